@@ -1,0 +1,90 @@
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "circuit/circuit_solver.hpp"
+#include "io/displacement_input.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_file.hpp"
+#include "tribology/domain_check.hpp"
+#include "tribology/sampled_motion.hpp"
+
+namespace stengmc::app {
+
+namespace {
+
+struct CircuitOptions {
+  std::string input;
+  std::string out;
+  std::string interpolation = "spline";
+  CircuitParams params;
+  StengElement csv_element;  // Table 2 defaults
+};
+
+void run(const CircuitOptions& options) {
+  const bool csv = std::filesystem::path(options.input).extension() == ".csv";
+  const DisplacementInput input = csv ? read_displacement_csv(options.input, options.csv_element)
+                                      : read_displacement_hdf5(options.input);
+  const Interpolation interpolation = parse_interpolation(options.interpolation, "--interpolation");
+  std::vector<std::unique_ptr<Motion>> motions;
+  std::vector<const Motion*> pointers;
+  for (std::size_t i = 0; i < input.x_m.size(); ++i) {
+    motions.push_back(std::make_unique<SampledMotion>(input.times_s, input.x_m[i], interpolation));
+    pointers.push_back(motions.back().get());
+    // A spline can overshoot between samples that all stay below l.
+    if (const auto exit = first_domain_exit(*motions.back(), input.times_s, input.x_m[i], input.elements[i].length_m))
+      throw InputError(options.input + ": element " + std::to_string(i + 1) + " reaches l at t = " + std::to_string(*exit) + " s");
+  }
+  std::printf("stengmc circuit %s: %zu elements, %zu samples, %s interpolation, R = %.4g Ohm, C_L = %.4g F\n",
+              options.input.c_str(), input.x_m.size(), input.times_s.size(), options.interpolation.c_str(),
+              options.params.load_resistance_ohm, options.params.load_capacitance_f);
+  const CircuitResult circuit = solve_circuit(input.elements, pointers, input.times_s, options.params);
+
+  Hdf5Writer file(options.out);
+  write_provenance(file, {"stengmc-circuit", options.input, "", 0});
+  file.attribute("/", "interpolation", interpolation_name(interpolation));
+  file.write("/time", input.times_s, "s");
+  file.write("/asperity/x", input.x_m, "m");
+  std::vector<std::vector<double>> v(input.x_m.size());
+  for (std::size_t i = 0; i < input.x_m.size(); ++i)
+    for (double t : input.times_s) v[i].push_back(motions[i]->at(t).v_m_per_s);
+  file.write("/asperity/v", v, "m/s");
+  write_elements(file, input.elements);
+  write_circuit(file, circuit, options.params);
+  file.commit();
+  double peak = 0.0;
+  for (double x : circuit.voltage_v) peak = std::max(peak, std::abs(x));
+  std::printf("voltage peak %.4g V; final charge %.4g C\nwrote %s\n", peak, circuit.charge_c.back(), options.out.c_str());
+}
+
+}  // namespace
+
+void add_circuit_command(CLI::App& app) {
+  auto options = std::make_shared<CircuitOptions>();
+  CLI::App* command = app.add_subcommand(
+      "circuit", "Drive the S-TENG circuit with displacements from a file (HDF5 in stengmc's layout, or CSV t,x1,...)");
+  command->add_option("input", options->input, "IN.h5 (/time, /asperity/x, /asperity/{sigma,d0,w,l}) or IN.csv")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--out", options->out, "Output HDF5 file")->required();
+  command->add_option("-R,--load-resistance", options->params.load_resistance_ohm, "Load resistance [Ohm]")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  command->add_option("-C,--load-capacitance", options->params.load_capacitance_f, "Load capacitance [F]", true)
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--interpolation", options->interpolation, "x between samples: spline (not-a-knot) or linear (SPICE PWL)", true)
+      ->check(CLI::IsMember({"spline", "linear"}));
+  command->add_option("--substeps", options->params.substeps, "Radau IIA steps per sample interval", true)
+      ->check(CLI::PositiveNumber);
+  command->add_option("--sigma", options->csv_element.charge_density_c_per_m2, "CSV input: charge density [C/m^2]", true);
+  command->add_option("--d0", options->csv_element.effective_thickness_m, "CSV input: effective thickness [m]", true)
+      ->check(CLI::PositiveNumber);
+  command->add_option("--width", options->csv_element.width_m, "CSV input: element width w [m]", true)
+      ->check(CLI::PositiveNumber);
+  command->add_option("--length", options->csv_element.length_m, "CSV input: element length l [m]", true)
+      ->check(CLI::PositiveNumber);
+  command->callback([options] { run(*options); });
+}
+
+}  // namespace stengmc::app

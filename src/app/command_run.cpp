@@ -1,0 +1,50 @@
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "io/run_file.hpp"
+#include "io/study.hpp"
+#include "pipeline/run_study.hpp"
+#include "pipeline/run_summary.hpp"
+
+namespace stengmc::app {
+
+namespace {
+
+struct RunOptions {
+  std::string study_file;
+  std::string out;
+  bool figures = false;
+};
+
+void run(const RunOptions& options) {
+  const Study study = read_study(options.study_file);
+  const std::string out = options.out.empty() ? study.output_file : options.out;
+  std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
+              std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
+              study.sample_rate_hz);
+  if (!study.title.empty()) std::printf("  %s\n", study.title.c_str());
+  const RunResult result = run_study(study);
+  const RunSummary summary = summarise(study, result);
+  write_run_file(out, study, result, summary);
+  std::printf("%s", format_summary(study, result, summary).c_str());
+  for (const std::string& note : result.notes) std::printf("NOTE: %s\n", note.c_str());
+  std::printf("wrote %s\n", out.c_str());
+  if (options.figures && render_figures(out) != 0)
+    throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* command = app.add_subcommand("run", "Run a study: tribology -> S-TENG circuit -> HDF5 output");
+  command->add_option("study", options->study_file, "Study file (TOML; see studies/ and the README)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
+  command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
+  command->callback([options] { run(*options); });
+}
+
+}  // namespace stengmc::app

@@ -1,0 +1,73 @@
+#pragma once
+//! Thin HDF5 (C++ API) wrappers: datasets carry a `units` attribute, groups are made on
+//! demand, nothing non-finite is ever written, and files appear only when complete.
+#include <H5Cpp.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stengmc {
+
+//! Writes a new HDF5 file under a temporary name; `commit()` renames it into place, and
+//! a writer destroyed before that removes the temporary file, so a killed or failed run
+//! never leaves a half-written result under the final name.
+class Hdf5Writer {
+ public:
+  explicit Hdf5Writer(std::string path);
+  ~Hdf5Writer();
+  Hdf5Writer(const Hdf5Writer&) = delete;
+  Hdf5Writer& operator=(const Hdf5Writer&) = delete;
+
+  //! 1-D dataset of doubles; throws Error if any value is NaN or Inf.
+  void write(const std::string& path, std::span<const double> values, std::string_view units);
+  //! 2-D dataset [rows][columns] of doubles (every row the same length).
+  void write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units);
+  //! 1-D dataset of integers.
+  void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units);
+  //! 1-D dataset of variable-length strings.
+  void write(const std::string& path, const std::vector<std::string>& values);
+
+  //! Creates the group (and its parents) if it does not exist yet.
+  void group(const std::string& path);
+
+  //! String attribute on a group or dataset ("/" for the root).
+  void attribute(const std::string& object, const std::string& name, std::string_view value);
+  //! Numeric attributes.
+  void attribute(const std::string& object, const std::string& name, double value);
+  void attribute(const std::string& object, const std::string& name, std::int64_t value);
+
+  //! Closes the file and renames it to its final path.
+  void commit();
+
+ private:
+  H5::Group group_for(const std::string& dataset_path);
+  void set_units(H5::DataSet& dataset, std::string_view units);
+
+  std::string path_;
+  std::string temporary_path_;
+  H5::H5File file_;
+  bool committed_ = false;
+};
+
+//! Reads datasets and attributes from an existing file, with errors naming the file.
+class Hdf5Reader {
+ public:
+  explicit Hdf5Reader(std::string path);
+
+  [[nodiscard]] bool has(const std::string& path) const;
+  //! 1-D dataset of doubles (or an integer dataset, converted).
+  [[nodiscard]] std::vector<double> vector(const std::string& path) const;
+  //! 2-D dataset of doubles as rows.
+  [[nodiscard]] std::vector<std::vector<double>> matrix(const std::string& path) const;
+  //! String attribute, or "" when absent.
+  [[nodiscard]] std::string string_attribute(const std::string& object, const std::string& name) const;
+
+ private:
+  std::string path_;
+  H5::H5File file_;
+};
+
+}  // namespace stengmc

@@ -1,0 +1,175 @@
+#include "io/run_file.hpp"
+
+#include <chrono>
+#include <ctime>
+
+#include "core/build_info.hpp"
+
+namespace stengmc {
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+template <class Field>
+std::vector<double> per_asperity(const Study& study, Field field) {
+  std::vector<double> out;
+  for (const Asperity& a : study.asperities) out.push_back(field(a));
+  return out;
+}
+
+template <class Field>
+std::vector<std::vector<double>> per_trajectory(const RunResult& result, Field field) {
+  std::vector<std::vector<double>> out;
+  for (const Trajectory& t : result.trajectories) out.push_back(field(t));
+  return out;
+}
+
+void write_model(Hdf5Writer& file, const Study& study) {
+  file.group("/model");
+  file.attribute("/model", "kind", model_name(study.model));
+  if (study.model == ModelKind::model1) {
+    const Model1Params& p = study.model1;
+    file.attribute("/model", "static_friction", p.friction.static_coefficient);
+    file.attribute("/model", "kinetic_friction", p.friction.kinetic_coefficient);
+    file.attribute("/model", "drive_amplitude_m", p.drive_amplitude_m);
+    file.attribute("/model", "drive_angular_frequency_rad_per_s", p.drive_angular_frequency_rad_per_s);
+    file.attribute("/model", "solver", p.solver == Model1Solver::exact ? "exact" : "euler_cromer");
+    file.attribute("/model", "euler_cromer_substeps", static_cast<std::int64_t>(p.euler_cromer_substeps));
+  } else {
+    const Model2Params& p = study.model2;
+    file.attribute("/model", "static_friction", p.friction.static_coefficient);
+    file.attribute("/model", "kinetic_friction", p.friction.kinetic_coefficient);
+    file.attribute("/model", "belt_velocity_m_per_s", p.belt_velocity_m_per_s);
+    file.attribute("/model", "damping_n_s_per_m", p.damping_n_s_per_m);
+    file.attribute("/model", "stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
+    file.attribute("/model", "atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
+    file.attribute("/model", "friction_form", p.friction_form == FrictionForm::consistent ? "consistent" : "literal");
+    file.attribute("/model", "relative_tolerance", p.relative_tolerance);
+  }
+}
+
+void write_events(Hdf5Writer& file, const RunResult& result) {
+  std::vector<double> times;
+  std::vector<std::int64_t> asperity;
+  std::vector<std::string> kinds;
+  for (const Event& e : result.events) {
+    times.push_back(e.time_s);
+    asperity.push_back(static_cast<std::int64_t>(e.asperity));
+    kinds.emplace_back(event_name(e.kind));
+  }
+  file.write("/events/time", times, "s");
+  file.write("/events/asperity", asperity, "index");
+  file.write("/events/kind", kinds);
+}
+
+}  // namespace
+
+void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
+  file.attribute("/", "file_type", provenance.file_type);
+  file.attribute("/", "format_version", RUN_FILE_FORMAT_VERSION);
+  file.attribute("/", "program_version", program_version());
+  file.attribute("/", "git_revision", git_revision());
+  file.attribute("/", "created_utc", utc_now());
+  file.attribute("/", "seed", static_cast<std::int64_t>(provenance.seed));
+  file.attribute("/", "input_file", provenance.input_file);
+  file.attribute("/", "input_text", provenance.input_text);
+}
+
+void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
+  std::vector<double> sigma, d0, w, l;
+  for (const StengElement& e : elements) {
+    sigma.push_back(e.charge_density_c_per_m2);
+    d0.push_back(e.effective_thickness_m);
+    w.push_back(e.width_m);
+    l.push_back(e.length_m);
+  }
+  file.write("/asperity/sigma", sigma, "C/m^2");
+  file.write("/asperity/d0", d0, "m");
+  file.write("/asperity/w", w, "m");
+  file.write("/asperity/l", l, "m");
+}
+
+void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params) {
+  file.write("/circuit/voltage", circuit.voltage_v, "V");
+  file.write("/circuit/charge", circuit.charge_c, "C");
+  file.write("/asperity/current", circuit.current_a, "A");
+  file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
+  file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
+  file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
+  file.attribute("/circuit", "samples", static_cast<std::int64_t>(circuit.voltage_v.size()));
+}
+
+void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary) {
+  Hdf5Writer file(path);
+  write_provenance(file, {"stengmc-run", study.file, study.text, study.seed});
+  file.attribute("/", "title", study.title);
+  file.attribute("/", "surface_file", study.surface_file);
+  file.attribute("/", "domain_policy", domain_policy_name(study.domain_policy));
+  file.attribute("/", "valid", static_cast<std::int64_t>(result.valid ? 1 : 0));
+  file.attribute("/", "duration_s", study.duration_s);
+  file.attribute("/", "sample_rate_hz", study.sample_rate_hz);
+
+  file.write("/time", result.times_s, "s");
+  write_model(file, study);
+
+  file.write("/asperity/k", per_asperity(study, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
+  file.write("/asperity/m", per_asperity(study, [](const Asperity& a) { return a.mass_kg; }), "kg");
+  file.write("/asperity/N", per_asperity(study, [](const Asperity& a) { return a.normal_load_n; }), "N");
+  file.write("/asperity/h", per_asperity(study, [](const Asperity& a) { return a.height_m; }), "m");
+  file.write("/asperity/phi", per_asperity(study, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
+  std::vector<StengElement> elements;
+  for (const Asperity& a : study.asperities) elements.push_back(a.element);
+  write_elements(file, elements);
+
+  file.write("/asperity/x", per_trajectory(result, [](const Trajectory& t) { return t.x_m; }), "m");
+  file.write("/asperity/v", per_trajectory(result, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
+  file.write("/asperity/friction", per_trajectory(result, [](const Trajectory& t) { return t.friction_n; }), "N");
+  if (!result.drives.empty()) {
+    std::vector<std::vector<double>> x0;
+    for (const auto& drive : result.drives) {
+      std::vector<double> row;
+      for (double t : result.times_s) row.push_back(drive->at(t).x_m);
+      x0.push_back(std::move(row));
+    }
+    file.write("/asperity/x0", x0, "m");
+  } else if (study.model == ModelKind::model1) {
+    std::vector<std::vector<double>> x0;
+    for (const Asperity& a : study.asperities) {
+      std::vector<double> row;
+      for (double t : result.times_s) row.push_back(imposed_displacement(study.model1, a, t));
+      x0.push_back(std::move(row));
+    }
+    file.write("/asperity/x0", x0, "m");
+  }
+
+  std::vector<double> frequency, slip, max_x, rms_v;
+  for (const AsperitySummary& s : summary.asperities) {
+    frequency.push_back(s.natural_frequency_hz);
+    slip.push_back(s.slip_fraction);
+    max_x.push_back(s.max_x_over_l);
+    rms_v.push_back(s.rms_velocity_m_per_s);
+  }
+  file.write("/asperity/natural_frequency", frequency, "Hz");
+  file.write("/asperity/slip_fraction", slip, "1");
+  file.write("/asperity/max_x_over_l", max_x, "1");
+  file.write("/asperity/rms_velocity", rms_v, "m/s");
+  std::vector<std::int64_t> steps;
+  for (const Trajectory& t : result.trajectories) steps.push_back(static_cast<std::int64_t>(t.solver_steps));
+  file.write("/asperity/solver_steps", steps, "1");
+
+  write_circuit(file, result.circuit, study.circuit);
+  file.attribute("/circuit", "input", study.circuit_input == CircuitInput::actual ? "actual" : "imposed");
+  file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);
+  file.attribute("/circuit", "voltage_peak_v", summary.voltage_peak_v);
+  file.attribute("/circuit", "final_charge_c", summary.final_charge_c);
+  write_events(file, result);
+  file.commit();
+}
+
+}  // namespace stengmc

@@ -1,0 +1,37 @@
+#pragma once
+//! The output file of a run (layout: README, "Output files"). Format version 1.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "circuit/circuit_solver.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/study.hpp"
+#include "pipeline/run_study.hpp"
+#include "pipeline/run_summary.hpp"
+
+namespace stengmc {
+
+inline constexpr std::int64_t RUN_FILE_FORMAT_VERSION = 1;
+
+//! Root attributes every stengmc file carries: what it is and where it came from.
+struct Provenance {
+  std::string file_type;    //!< "stengmc-run" or "stengmc-circuit"
+  std::string input_file;   //!< the study (or displacement file) it was made from
+  std::string input_text;   //!< that study's text, verbatim ("" for binary inputs)
+  std::uint64_t seed = 0;   //!< master seed
+};
+
+void write_provenance(Hdf5Writer& file, const Provenance& provenance);
+
+//! /asperity/{sigma,d0,w,l}: the element parameters.
+void write_elements(Hdf5Writer& file, std::span<const StengElement> elements);
+
+//! /circuit/{voltage,charge} and /asperity/current, plus the load as attributes.
+void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params);
+
+//! Writes a complete run file at `path` (temporary name, renamed when complete).
+void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary);
+
+}  // namespace stengmc

@@ -1,0 +1,168 @@
+#include "io/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "core/constants.hpp"
+#include "core/error.hpp"
+#include "io/toml_reader.hpp"
+#include "surface/fixed_population.hpp"
+
+namespace stengmc {
+
+std::string_view model_name(ModelKind kind) { return kind == ModelKind::model1 ? "model1" : "model2"; }
+std::string_view domain_policy_name(DomainPolicy policy) { return policy == DomainPolicy::error ? "error" : "flag"; }
+
+namespace {
+
+// Output arrays are n x M doubles, several of them; refuse studies that cannot fit.
+constexpr double MAX_SAMPLES_TIMES_ASPERITIES = 2e8;
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+FrictionCoefficients read_friction(TomlTable& model) {
+  FrictionCoefficients f;
+  f.static_coefficient = model.positive("static_friction", f.static_coefficient);
+  f.kinetic_coefficient = model.positive("kinetic_friction", f.kinetic_coefficient);
+  if (f.static_coefficient < f.kinetic_coefficient)
+    model.fail("static_friction", "= " + number_text(f.static_coefficient) + " must be >= kinetic_friction = " +
+                                      number_text(f.kinetic_coefficient));
+  return f;
+}
+
+void read_model(TomlTable& root, Study& study) {
+  auto model = root.table("model");
+  if (!model) root.fail("model", "is missing: a [model] table with kind = \"model1\" or \"model2\" is required");
+  const std::string kind = model->choice("kind", "", {"model1", "model2"});
+  if (kind == "model1") {
+    study.model = ModelKind::model1;
+    Model1Params& p = study.model1;
+    p.friction = read_friction(*model);
+    p.drive_amplitude_m = model->non_negative("drive_amplitude_m", p.drive_amplitude_m);
+    p.drive_angular_frequency_rad_per_s =
+        2.0 * PI * model->positive("drive_frequency_hz", p.drive_angular_frequency_rad_per_s / (2.0 * PI));
+    const std::string solver = model->choice("solver", "exact", {"exact", "euler_cromer"});
+    p.solver = solver == "exact" ? Model1Solver::exact : Model1Solver::euler_cromer;
+    if (p.solver == Model1Solver::euler_cromer)
+      p.euler_cromer_substeps = static_cast<std::size_t>(model->integer("euler_cromer_substeps", 1, 1));
+  } else {
+    study.model = ModelKind::model2;
+    Model2Params& p = study.model2;
+    p.friction = read_friction(*model);
+    p.belt_velocity_m_per_s = model->number("belt_velocity_m_per_s", p.belt_velocity_m_per_s);
+    p.damping_n_s_per_m = model->non_negative("damping_n_s_per_m", p.damping_n_s_per_m);
+    p.stribeck_decay_s_per_m = model->non_negative("stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
+    p.atan_sharpness_s_per_m = model->positive("atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
+    const std::string form = model->choice("friction_form", "consistent", {"consistent", "literal"});
+    p.friction_form = form == "consistent" ? FrictionForm::consistent : FrictionForm::literal;
+    p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
+    if (p.relative_tolerance >= 1e-2 || p.relative_tolerance < 1e-14)
+      model->fail("relative_tolerance", "= " + number_text(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
+  }
+}
+
+void read_surface(TomlTable& root, Study& study) {
+  auto surface = root.table("surface");
+  if (!surface) root.fail("surface", "is missing: a [surface] table with file = \"...\" or [[surface.asperity]] entries is required");
+  if (surface->has("file")) {
+    if (surface->has("asperity") || surface->has("defaults"))
+      surface->fail("file", "cannot be combined with inline [surface.defaults] / [[surface.asperity]]: choose one");
+    const std::string name = surface->string("file", "");
+    const std::filesystem::path base = std::filesystem::path(study.file).parent_path();
+    const std::filesystem::path path = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : base / name;
+    if (!std::filesystem::exists(path))
+      surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
+    auto document = TomlDocument::from_file(path.string());
+    TomlTable table = document->root();
+    study.asperities = read_fixed_population(table);
+    document->reject_unknown_keys();
+    study.surface_file = path.string();
+  } else {
+    study.asperities = read_fixed_population(*surface);
+  }
+}
+
+void read_circuit(TomlTable& root, Study& study) {
+  auto circuit = root.table("circuit");
+  if (!circuit) return;
+  CircuitParams& c = study.circuit;
+  c.load_resistance_ohm = circuit->positive("load_resistance_ohm", c.load_resistance_ohm);
+  c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
+  c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
+  const std::string input = circuit->choice("input", "actual", {"actual", "imposed"});
+  study.circuit_input = input == "actual" ? CircuitInput::actual : CircuitInput::imposed;
+  if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
+    circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");
+}
+
+//! Sampling below twice the highest natural frequency aliases the asperity lines.
+void check_sample_rate(TomlTable& root, const Study& study) {
+  double highest_hz = 0.0;
+  std::size_t which = 0;
+  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
+    const Asperity& a = study.asperities[i];
+    const double f = std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI);
+    if (f > highest_hz) highest_hz = f, which = i;
+  }
+  if (study.sample_rate_hz < 2.0 * highest_hz)
+    root.fail("sample_rate_hz", "= " + number_text(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
+                                    number_text(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
+                                    "): use at least " + number_text(2.0 * highest_hz) + " Hz");
+}
+
+std::string default_output_file(const std::string& study_file) {
+  return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
+}
+
+Study parse(TomlDocument& document) {
+  Study study;
+  study.file = document.file();
+  study.text = document.text();
+  TomlTable root = document.root();
+  study.title = root.string("title", "");
+  study.seed = static_cast<std::uint64_t>(root.integer("seed", 0, 0));
+  if (!root.has("duration_s")) root.fail("duration_s", "is missing: the simulated time in seconds is required");
+  if (!root.has("sample_rate_hz")) root.fail("sample_rate_hz", "is missing: the output sample rate in Hz is required");
+  study.duration_s = root.positive("duration_s", 0.0);
+  study.sample_rate_hz = root.positive("sample_rate_hz", 0.0);
+  read_model(root, study);
+  read_surface(root, study);
+  read_circuit(root, study);
+  if (auto domain = root.table("domain")) {
+    const std::string policy = domain->choice("policy", "error", {"error", "flag"});
+    study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
+  }
+  study.output_file = default_output_file(study.file);
+  if (auto output = root.table("output")) study.output_file = output->string("file", study.output_file);
+  document.reject_unknown_keys();
+
+  check_sample_rate(root, study);
+  const double samples = study.duration_s * study.sample_rate_hz + 1.0;
+  if (samples < 2.0)
+    root.fail("duration_s", "x sample_rate_hz gives fewer than 2 samples; lengthen duration_s or raise sample_rate_hz");
+  if (samples * static_cast<double>(study.asperities.size()) > MAX_SAMPLES_TIMES_ASPERITIES)
+    root.fail("duration_s", "x sample_rate_hz x asperities = " + number_text(samples * static_cast<double>(study.asperities.size())) +
+                                " samples: above the limit of " + number_text(MAX_SAMPLES_TIMES_ASPERITIES) + " for one run");
+  return study;
+}
+
+}  // namespace
+
+Study read_study(const std::string& file) {
+  auto document = TomlDocument::from_file(file);
+  return parse(*document);
+}
+
+Study parse_study(const std::string& text, const std::string& file) {
+  auto document = TomlDocument::from_string(text, file);
+  return parse(*document);
+}
+
+}  // namespace stengmc

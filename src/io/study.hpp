@@ -1,0 +1,60 @@
+#pragma once
+//! A study: everything one run needs, read from a TOML study file (README: study files).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "circuit/circuit_solver.hpp"
+#include "surface/asperity.hpp"
+#include "tribology/model1.hpp"
+#include "tribology/model2.hpp"
+#include "tribology/time_grid.hpp"
+
+namespace stengmc {
+
+enum class ModelKind { model1, model2 };
+
+//! What to do when an asperity's x reaches its element's l (MODEL.md §2).
+enum class DomainPolicy {
+  error,  //!< stop the run with a message naming the asperity and the time
+  flag,   //!< keep the tribology, cut the circuit at the first exit, mark the run invalid
+};
+
+//! What drives the S-TENG elements.
+enum class CircuitInput {
+  actual,   //!< the asperity's own displacement x(t) (the default)
+  imposed,  //!< Model 1's imposed x0(t), as in the paper's Fig. 3c
+};
+
+struct Study {
+  std::string file;           //!< path the study was read from
+  std::string text;           //!< the study file, verbatim, recorded in every output
+  std::string title;          //!< free text
+  std::uint64_t seed = 0;     //!< master seed (recorded; fixed populations draw no numbers)
+  double duration_s = 0.0;    //!< simulated time [s]
+  double sample_rate_hz = 0;  //!< output sample rate [Hz]
+  ModelKind model = ModelKind::model2;
+  Model1Params model1;
+  Model2Params model2;
+  std::string surface_file;   //!< surface file the asperities came from, or "" if inline
+  std::vector<Asperity> asperities;
+  CircuitParams circuit;
+  CircuitInput circuit_input = CircuitInput::actual;
+  DomainPolicy domain_policy = DomainPolicy::error;
+  std::string output_file;    //!< where `run` writes, unless the command line says otherwise
+
+  //! The output grid.
+  [[nodiscard]] TimeGrid grid() const { return TimeGrid::covering(duration_s, sample_rate_hz); }
+};
+
+//! Reads and validates a study file; throws InputError naming file, line, key and what
+//! was expected. Relative surface paths are taken from the study file's folder.
+Study read_study(const std::string& file);
+
+//! The same from text (tests); `file` is used in messages and to resolve surface paths.
+Study parse_study(const std::string& text, const std::string& file);
+
+std::string_view model_name(ModelKind kind);
+std::string_view domain_policy_name(DomainPolicy policy);
+
+}  // namespace stengmc

@@ -1,0 +1,213 @@
+#include "io/toml_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace stengmc {
+
+namespace {
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+std::string join(const std::vector<std::string_view>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", \"" : "\"") + std::string(items[i]) + "\"";
+  return out;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- TomlDocument
+
+TomlDocument::TomlDocument(toml::table table, std::string file, std::string text)
+    : table_(std::move(table)), file_(std::move(file)), text_(std::move(text)) {}
+
+std::unique_ptr<TomlDocument> TomlDocument::from_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file + ": cannot open the file for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return from_string(buffer.str(), file);
+}
+
+std::unique_ptr<TomlDocument> TomlDocument::from_string(const std::string& text, const std::string& file) {
+  try {
+    toml::table table = toml::parse(text, file);
+    return std::unique_ptr<TomlDocument>(new TomlDocument(std::move(table), file, text));
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw InputError(file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
+                     ": not valid TOML: " + std::string(e.description()));
+  }
+}
+
+TomlTable TomlDocument::root() { return TomlTable(*this, table_, ""); }
+
+void TomlDocument::note_read(const toml::table& table, std::string_view key) { read_[&table].emplace(key); }
+
+void TomlDocument::collect_unknown(const toml::table& table, const std::string& path,
+                                   std::vector<std::string>& out) const {
+  const auto found = read_.find(&table);
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const bool was_read = found != read_.end() && found->second.count(name) > 0;
+    const std::string qualified = path.empty() ? name : path + "." + name;
+    if (!was_read) {
+      std::string allowed;
+      if (found != read_.end())
+        for (const auto& k : found->second) allowed += (allowed.empty() ? "" : ", ") + k;
+      out.push_back(file_ + ":" + std::to_string(node.source().begin.line) + ": unknown key '" + qualified +
+                    "'" + (allowed.empty() ? "" : "; allowed here: " + allowed));
+      continue;
+    }
+    if (const auto* sub = node.as_table()) collect_unknown(*sub, qualified, out);
+    if (const auto* array = node.as_array())
+      for (std::size_t i = 0; i < array->size(); ++i)
+        if (const auto* sub = (*array)[i].as_table())
+          collect_unknown(*sub, qualified + "[" + std::to_string(i) + "]", out);
+  }
+}
+
+void TomlDocument::reject_unknown_keys() const {
+  std::vector<std::string> unknown;
+  collect_unknown(table_, "", unknown);
+  if (unknown.empty()) return;
+  std::string message;
+  for (const auto& line : unknown) message += (message.empty() ? "" : "\n") + line;
+  throw InputError(message);
+}
+
+// ---------------------------------------------------------------- TomlTable
+
+TomlTable::TomlTable(TomlDocument& document, const toml::table& table, std::string path)
+    : document_(&document), table_(&table), path_(std::move(path)) {}
+
+const toml::node* TomlTable::lookup(std::string_view key) {
+  document_->note_read(*table_, key);
+  return table_->get(key);
+}
+
+std::string TomlTable::qualified(std::string_view key) const {
+  return path_.empty() ? std::string(key) : "[" + path_ + "] " + std::string(key);
+}
+
+std::string TomlTable::location(std::string_view key) const {
+  const toml::node* node = table_->get(key);
+  const auto line = node ? node->source().begin.line : table_->source().begin.line;
+  return document_->file() + ":" + std::to_string(line);
+}
+
+void TomlTable::fail(std::string_view key, const std::string& what) const {
+  throw InputError(location(key) + ": " + qualified(key) + " " + what);
+}
+
+std::string TomlTable::describe(const toml::node& node) const {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date or time";
+  }
+}
+
+bool TomlTable::has(std::string_view key) { return lookup(key) != nullptr; }
+
+double TomlTable::number(std::string_view key, double fallback) {
+  const toml::node* node = lookup(key);
+  if (!node) return fallback;
+  double value = 0.0;
+  if (const auto* i = node->as_integer()) {
+    value = static_cast<double>(i->get());
+  } else if (const auto* f = node->as_floating_point()) {
+    value = f->get();
+  } else {
+    fail(key, "is " + describe(*node) + "; expected a number");
+  }
+  if (!std::isfinite(value)) fail(key, "= " + format_number(value) + " is not a finite number");
+  return value;
+}
+
+double TomlTable::required_number(std::string_view key) {
+  if (!lookup(key)) fail(key, "is missing; a number is required");
+  return number(key, 0.0);
+}
+
+double TomlTable::positive(std::string_view key, double fallback) {
+  const double value = number(key, fallback);
+  if (!(value > 0.0)) fail(key, "= " + format_number(value) + " must be > 0");
+  return value;
+}
+
+double TomlTable::non_negative(std::string_view key, double fallback) {
+  const double value = number(key, fallback);
+  if (!(value >= 0.0)) fail(key, "= " + format_number(value) + " must be >= 0");
+  return value;
+}
+
+long long TomlTable::integer(std::string_view key, long long fallback, long long minimum) {
+  const toml::node* node = lookup(key);
+  if (!node) return fallback;
+  const auto* i = node->as_integer();
+  if (!i) fail(key, "is " + describe(*node) + "; expected an integer");
+  if (i->get() < minimum) fail(key, "= " + std::to_string(i->get()) + " must be >= " + std::to_string(minimum));
+  return i->get();
+}
+
+bool TomlTable::boolean(std::string_view key, bool fallback) {
+  const toml::node* node = lookup(key);
+  if (!node) return fallback;
+  const auto* b = node->as_boolean();
+  if (!b) fail(key, "is " + describe(*node) + "; expected true or false");
+  return b->get();
+}
+
+std::string TomlTable::string(std::string_view key, std::string_view fallback) {
+  const toml::node* node = lookup(key);
+  if (!node) return std::string(fallback);
+  const auto* s = node->as_string();
+  if (!s) fail(key, "is " + describe(*node) + "; expected a string");
+  return s->get();
+}
+
+std::string TomlTable::choice(std::string_view key, std::string_view fallback,
+                              const std::vector<std::string_view>& allowed) {
+  std::string value = string(key, fallback);
+  for (auto a : allowed)
+    if (value == a) return value;
+  fail(key, "= \"" + value + "\" is not one of " + join(allowed));
+}
+
+std::optional<TomlTable> TomlTable::table(std::string_view key) {
+  const toml::node* node = lookup(key);
+  if (!node) return std::nullopt;
+  const auto* sub = node->as_table();
+  if (!sub) fail(key, "is " + describe(*node) + "; expected a table");
+  return TomlTable(*document_, *sub, path_.empty() ? std::string(key) : path_ + "." + std::string(key));
+}
+
+std::vector<TomlTable> TomlTable::table_array(std::string_view key) {
+  std::vector<TomlTable> out;
+  const toml::node* node = lookup(key);
+  if (!node) return out;
+  const auto* array = node->as_array();
+  if (!array) fail(key, "is " + describe(*node) + "; expected an array of tables ([[" + std::string(key) + "]])");
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const auto* sub = (*array)[i].as_table();
+    if (!sub) fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a table");
+    out.emplace_back(*document_, *sub, (path_.empty() ? "" : path_ + ".") + std::string(key) + "[" + std::to_string(i) + "]");
+  }
+  return out;
+}
+
+}  // namespace stengmc

@@ -1,0 +1,90 @@
+#pragma once
+//! Typed, validated access to a TOML document. Every key read is remembered, so once a
+//! reader is done, any key nobody asked for is reported as unknown (pbrt's ReportUnused).
+//! Every error names the file, the line, the key, the value and what was expected.
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+#include <vector>
+
+namespace stengmc {
+
+class TomlDocument;
+
+//! One table of a document, read key by key.
+class TomlTable {
+ public:
+  TomlTable(TomlDocument& document, const toml::table& table, std::string path);
+
+  //! A number (integer or float); `fallback` when absent.
+  double number(std::string_view key, double fallback);
+  //! A number that must be present.
+  double required_number(std::string_view key);
+  //! A number > 0; `fallback` when absent.
+  double positive(std::string_view key, double fallback);
+  //! A number >= 0; `fallback` when absent.
+  double non_negative(std::string_view key, double fallback);
+  //! An integer >= minimum; `fallback` when absent.
+  long long integer(std::string_view key, long long fallback, long long minimum);
+  //! A boolean; `fallback` when absent.
+  bool boolean(std::string_view key, bool fallback);
+  //! A string that must be one of `allowed`; `fallback` when absent.
+  std::string choice(std::string_view key, std::string_view fallback, const std::vector<std::string_view>& allowed);
+  //! A free string; `fallback` when absent.
+  std::string string(std::string_view key, std::string_view fallback);
+  //! True when the key is present (and marks it read).
+  bool has(std::string_view key);
+  //! A sub-table, if present; an error if the key holds something else.
+  std::optional<TomlTable> table(std::string_view key);
+  //! An array of tables (`[[key]]`), empty if absent.
+  std::vector<TomlTable> table_array(std::string_view key);
+
+  //! Throws InputError located at `key` (or at the table if the key is absent).
+  [[noreturn]] void fail(std::string_view key, const std::string& what) const;
+  //! "[model.solver] key" style name for messages.
+  [[nodiscard]] std::string qualified(std::string_view key) const;
+  //! Where the table is: "file:line".
+  [[nodiscard]] std::string location(std::string_view key) const;
+
+ private:
+  const toml::node* lookup(std::string_view key);
+  std::string describe(const toml::node& node) const;
+
+  TomlDocument* document_;
+  const toml::table* table_;
+  std::string path_;
+};
+
+//! A parsed TOML file and the record of what was read from it.
+class TomlDocument {
+ public:
+  //! Parses `file`; throws InputError with file:line:column on a syntax error or a missing file.
+  static std::unique_ptr<TomlDocument> from_file(const std::string& file);
+  //! Parses `text` as if read from `file` (for tests and for studies given as strings).
+  static std::unique_ptr<TomlDocument> from_string(const std::string& text, const std::string& file);
+
+  //! The root table.
+  TomlTable root();
+  //! Throws InputError listing every key that no reader asked for, with its line.
+  void reject_unknown_keys() const;
+
+  [[nodiscard]] const std::string& file() const { return file_; }
+  [[nodiscard]] const std::string& text() const { return text_; }
+
+ private:
+  friend class TomlTable;
+  TomlDocument(toml::table table, std::string file, std::string text);
+  void note_read(const toml::table& table, std::string_view key);
+  void collect_unknown(const toml::table& table, const std::string& path, std::vector<std::string>& out) const;
+
+  toml::table table_;
+  std::string file_;
+  std::string text_;
+  std::map<const toml::table*, std::set<std::string, std::less<>>> read_;
+};
+
+}  // namespace stengmc

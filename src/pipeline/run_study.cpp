@@ -1,0 +1,129 @@
+#include "pipeline/run_study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/progress.hpp"
+#include "tribology/domain_check.hpp"
+#include "tribology/imposed_drive.hpp"
+#include "tribology/model1.hpp"
+#include "tribology/model2.hpp"
+
+namespace stengmc {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string micro(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value * 1e6;
+  return out.str();
+}
+
+std::string describe(const Asperity& a, std::size_t index) {
+  std::ostringstream out;
+  out << "asperity " << index + 1 << " (k = " << a.stiffness_n_per_m << " N/m)";
+  return out.str();
+}
+
+Trajectory solve_one(const Study& study, const Asperity& asperity, const TimeGrid& grid) {
+  return study.model == ModelKind::model1 ? solve_model1(asperity, study.model1, grid)
+                                          : solve_model2(asperity, study.model2, grid);
+}
+
+void note_model1_validity(const Study& study, RunResult& result) {
+  if (study.model != ModelKind::model1) return;
+  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
+    const Asperity& a = study.asperities[i];
+    if (model1_can_slip(study.model1, a)) continue;
+    const double threshold = study.model1.friction.static_coefficient * a.normal_load_n / a.stiffness_n_per_m;
+    result.notes.push_back(describe(a, i) + " never slips: the drive amplitude A = " +
+                           micro(study.model1.drive_amplitude_m) + " um is not above mu_s N / k = " + micro(threshold) +
+                           " um (paper Eq. 1), so x stays 0 and its element gives no signal");
+  }
+}
+
+//! Finds the first time any element's displacement reaches its l; applies the policy.
+std::size_t valid_prefix(const Study& study, const std::vector<const Motion*>& inputs,
+                         const std::vector<std::vector<double>>& input_samples, RunResult& result) {
+  double first_exit = INFINITY;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const Asperity& a = study.asperities[i];
+    const auto exit = first_domain_exit(*inputs[i], result.times_s, input_samples[i], a.element.length_m);
+    if (!exit) continue;
+    result.events.push_back({*exit, i, EventKind::domain_exit});
+    const std::string what = describe(a, i) + ": x reaches l = " + micro(a.element.length_m) + " um at t = " +
+                             micro(*exit) + " us; the S-TENG element formulas (MODEL.md §2) hold only for x < l";
+    if (study.domain_policy == DomainPolicy::error)
+      throw ModelError(study.file + ": " + what +
+                       ". Lengthen the element (length_m) or set [domain] policy = \"flag\" to keep the valid part.");
+    result.notes.push_back(what + "; the circuit stops there and the run is marked invalid");
+    first_exit = std::min(first_exit, *exit);
+  }
+  if (std::isinf(first_exit)) return result.times_s.size();
+  result.valid = false;
+  return static_cast<std::size_t>(
+      std::lower_bound(result.times_s.begin(), result.times_s.end(), first_exit) - result.times_s.begin());
+}
+
+}  // namespace
+
+RunResult run_study(const Study& study) {
+  RunResult result;
+  const TimeGrid grid = study.grid();
+  result.times_s = grid.times();
+  const std::size_t n = study.asperities.size();
+
+  const auto tribology_start = Clock::now();
+  {
+    Progress progress("tribology", n);
+    for (std::size_t i = 0; i < n; ++i) {
+      result.trajectories.push_back(solve_one(study, study.asperities[i], grid));
+      for (Event e : result.trajectories.back().events) {
+        e.asperity = i;
+        result.events.push_back(e);
+      }
+      progress.advance();
+    }
+  }
+  result.tribology_seconds = seconds_since(tribology_start);
+  note_model1_validity(study, result);
+
+  // What drives the elements: the actual x(t), or the imposed x0(t) (Fig. 3c).
+  std::vector<const Motion*> inputs;
+  std::vector<std::vector<double>> input_samples;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (study.circuit_input == CircuitInput::imposed) {
+      result.drives.push_back(std::make_unique<ImposedDriveMotion>(study.model1, study.asperities[i]));
+      std::vector<double> x0(grid.count);
+      for (std::size_t j = 0; j < grid.count; ++j) x0[j] = result.drives.back()->at(result.times_s[j]).x_m;
+      inputs.push_back(result.drives.back().get());
+      input_samples.push_back(std::move(x0));
+    } else {
+      inputs.push_back(result.trajectories[i].motion.get());
+      input_samples.push_back(result.trajectories[i].x_m);
+    }
+  }
+  result.circuit_samples = valid_prefix(study, inputs, input_samples, result);
+  std::stable_sort(result.events.begin(), result.events.end(),
+                   [](const Event& a, const Event& b) { return a.time_s < b.time_s; });
+
+  const auto circuit_start = Clock::now();
+  std::vector<StengElement> elements;
+  for (const Asperity& a : study.asperities) elements.push_back(a.element);
+  result.circuit = solve_circuit(elements, inputs,
+                                 std::span<const double>(result.times_s.data(), result.circuit_samples), study.circuit);
+  result.circuit_seconds = seconds_since(circuit_start);
+  return result;
+}
+
+}  // namespace stengmc

@@ -1,0 +1,30 @@
+#pragma once
+//! One realisation: study -> tribology of every asperity -> domain check -> circuit.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "circuit/circuit_solver.hpp"
+#include "io/study.hpp"
+#include "tribology/events.hpp"
+#include "tribology/trajectory.hpp"
+
+namespace stengmc {
+
+struct RunResult {
+  std::vector<double> times_s;                       //!< output grid [s]
+  std::vector<Trajectory> trajectories;              //!< one per asperity, same order as the study
+  std::vector<std::unique_ptr<Motion>> drives;       //!< imposed x0(t) per asperity (Model 1), else empty
+  std::vector<Event> events;                         //!< every asperity's events, by time
+  CircuitResult circuit;                             //!< on the valid prefix of the grid
+  std::size_t circuit_samples = 0;                   //!< length of that prefix (all samples when valid)
+  bool valid = true;                                 //!< false when some x reached l (policy `flag`)
+  std::vector<std::string> notes;                    //!< plain-language warnings for the user
+  double tribology_seconds = 0.0;                    //!< wall time of the tribology [s]
+  double circuit_seconds = 0.0;                      //!< wall time of the circuit [s]
+};
+
+//! Runs the study. Throws ModelError when x reaches l under policy `error`.
+RunResult run_study(const Study& study);
+
+}  // namespace stengmc

@@ -1,0 +1,26 @@
+#pragma once
+//! One asperity in contact: its mechanics and its S-TENG element (MODEL.md §1, §2).
+
+namespace stengmc {
+
+//! The sliding-TENG element an asperity carries (paper Eqs. 3-5, Table 2).
+struct StengElement {
+  double charge_density_c_per_m2 = 80e-6;  //!< sigma, tribo-charge surface density [C/m^2]
+  double effective_thickness_m = 50e-6;    //!< d0 = d1/eps_r1 + d2/eps_r2 [m]
+  double width_m = 10e-6;                  //!< w, dielectric width [m]
+  double length_m = 10e-6;                 //!< l, dielectric length; the element needs x < l [m]
+};
+
+//! Mechanical parameters of one asperity and its element (paper Tables 1, 2).
+struct Asperity {
+  double stiffness_n_per_m = 75.0;           //!< k, shear stiffness [N/m]
+  double mass_kg = 1e-12;                    //!< m [kg]
+  double normal_load_n = 1e-3;               //!< N, normal load carried [N]
+  double height_m = 110e-6;                  //!< h, asperity height = dielectric thickness d1 [m]
+  double drive_phase_rad = 0.0;              //!< phi, Model 1 drive phase [rad]
+  double initial_displacement_m = 0.0;       //!< x(0) [m]
+  double initial_velocity_m_per_s = 0.0;     //!< x'(0) [m/s]
+  StengElement element;                      //!< its S-TENG element
+};
+
+}  // namespace stengmc

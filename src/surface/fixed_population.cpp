@@ -1,0 +1,47 @@
+#include "surface/fixed_population.hpp"
+
+#include <optional>
+
+namespace stengmc {
+
+namespace {
+
+//! Reads the per-asperity keys of `table` over `base` (the defaults). Positivity is
+//! checked where the physics needs it: k, m, l, w, d0 > 0 (C_i and the element
+//! formulas divide by them); N, h >= 0.
+Asperity read_asperity(TomlTable& table, const Asperity& base) {
+  Asperity a = base;
+  a.stiffness_n_per_m = table.positive("stiffness_n_per_m", base.stiffness_n_per_m);
+  a.mass_kg = table.positive("mass_kg", base.mass_kg);
+  a.normal_load_n = table.non_negative("normal_load_n", base.normal_load_n);
+  a.height_m = table.non_negative("height_m", base.height_m);
+  a.drive_phase_rad = table.number("drive_phase_rad", base.drive_phase_rad);
+  a.initial_displacement_m = table.number("initial_displacement_m", base.initial_displacement_m);
+  a.initial_velocity_m_per_s = table.number("initial_velocity_m_per_s", base.initial_velocity_m_per_s);
+  a.element.charge_density_c_per_m2 = table.number("charge_density_c_per_m2", base.element.charge_density_c_per_m2);
+  a.element.effective_thickness_m = table.positive("effective_thickness_m", base.element.effective_thickness_m);
+  a.element.width_m = table.positive("width_m", base.element.width_m);
+  a.element.length_m = table.positive("length_m", base.element.length_m);
+  if (a.initial_displacement_m >= a.element.length_m)
+    table.fail("initial_displacement_m", "must be < length_m = " + std::to_string(a.element.length_m) +
+                                             " m (the S-TENG element needs x < l)");
+  return a;
+}
+
+}  // namespace
+
+std::vector<Asperity> read_fixed_population(TomlTable& surface) {
+  Asperity defaults;
+  if (auto table = surface.table("defaults")) defaults = read_asperity(*table, defaults);
+  std::vector<Asperity> asperities;
+  for (TomlTable& entry : surface.table_array("asperity")) {
+    const auto count = entry.integer("count", 1, 1);
+    const Asperity a = read_asperity(entry, defaults);
+    asperities.insert(asperities.end(), static_cast<std::size_t>(count), a);
+  }
+  if (asperities.empty())
+    surface.fail("asperity", "is missing: give at least one [[asperity]] entry (stiffness_n_per_m = ...)");
+  return asperities;
+}
+
+}  // namespace stengmc
