@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Figures of stengmc output files (HDF5), as PNG beside each file.
+
+    plot_run.py RUN.h5 [RUN2.h5 ...]          one multi-panel figure per file
+    plot_run.py --compare A.h5 B.h5 --out F.png   voltages of several runs on one axis
+
+Reads only the file layout documented in the README; run with Debian's python3
+(python3-h5py, python3-matplotlib).
+"""
+import argparse
+import sys
+import textwrap
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+SUPPORTED_FORMAT = 1
+
+
+def attribute(node, name, default=""):
+    value = node.attrs.get(name, default)
+    return value.decode() if isinstance(value, bytes) else value
+
+
+def open_checked(path):
+    f = h5py.File(path, "r")
+    kind = attribute(f, "file_type")
+    if kind not in ("stengmc-run", "stengmc-circuit"):
+        sys.exit(f"{path}: not a stengmc output file (file_type = {kind!r})")
+    if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
+        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
+    return f
+
+
+def labels(f):
+    if "asperity/k" in f:
+        return [f"k = {k:g} N/m" for k in f["asperity/k"][:]]
+    return [f"element {i + 1}" for i in range(f["asperity/x"].shape[0])]
+
+
+def plot_run(path):
+    f = open_checked(path)
+    t_us = f["time"][:] * 1e6
+    x = f["asperity/x"][:]
+    names = labels(f)
+    circuit_samples = f["circuit/voltage"].shape[0]
+    tc_us = t_us[:circuit_samples]
+    panels = ["x", "v"] + (["friction"] if "asperity/friction" in f else []) + ["voltage", "charge", "current"]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(10, 2.3 * len(panels)), sharex=True)
+    for ax, panel in zip(axes, panels):
+        if panel == "x":
+            for i, name in enumerate(names):
+                ax.plot(t_us, x[i] * 1e6, lw=1, label=name)
+            if "asperity/x0" in f:
+                x0 = f["asperity/x0"][:]
+                for i in range(x0.shape[0]):
+                    ax.plot(t_us, x0[i] * 1e6, lw=0.8, ls="--", color="grey", label="imposed x0" if i == 0 else None)
+            lengths = np.unique(f["asperity/l"][:])
+            for l in lengths:
+                ax.axhline(l * 1e6, color="red", lw=0.8, ls=":", label=f"l = {l * 1e6:g} um")
+            ax.set_ylabel("x [um]")
+            ax.legend(fontsize=7, ncol=3, loc="best")
+        elif panel == "v":
+            v = f["asperity/v"][:]
+            for i, name in enumerate(names):
+                ax.plot(t_us, v[i], lw=0.8, label=name)
+            ax.set_ylabel("x' [m/s]")
+        elif panel == "friction":
+            fr = f["asperity/friction"][:]
+            for i, name in enumerate(names):
+                ax.plot(t_us, fr[i] * 1e3, lw=0.8, label=name)
+            ax.set_ylabel("friction [mN]")
+        elif panel == "voltage":
+            ax.plot(tc_us, f["circuit/voltage"][:] * 1e3, lw=0.8, color="k")
+            ax.set_ylabel("V [mV]")
+        elif panel == "charge":
+            ax.plot(tc_us, f["circuit/charge"][:], lw=1, color="k")
+            ax.set_ylabel("Q [C]")
+        elif panel == "current":
+            current = f["asperity/current"][:]
+            for i, name in enumerate(names):
+                ax.plot(tc_us, current[i], lw=0.8, label=name)
+            ax.set_ylabel("i_i [A]")
+        if "events/kind" in f:
+            kinds = [k.decode() if isinstance(k, bytes) else k for k in f["events/kind"][:]]
+            for time, kind in zip(f["events/time"][:], kinds):
+                if kind == "domain_exit":
+                    ax.axvline(time * 1e6, color="red", lw=1)
+    axes[-1].set_xlabel("t [us]")
+    title = attribute(f, "title") or path
+    valid = int(f.attrs.get("valid", 1))
+    if not valid:
+        title += "  [INVALID: x reached l (red line); circuit cut there]"
+    fig.suptitle("\n".join(textwrap.wrap(title, 110)), fontsize=9)
+    fig.tight_layout()
+    out = path.rsplit(".", 1)[0] + ".png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print(f"figure: {out}")
+
+
+def plot_compare(paths, out):
+    fig, ax = plt.subplots(figsize=(10, 4))
+    for path in paths:
+        f = open_checked(path)
+        v = f["circuit/voltage"][:]
+        t_us = f["time"][: v.shape[0]] * 1e6
+        ax.plot(t_us, v * 1e3, lw=0.8, label=attribute(f, "title")[:80] or path)
+    ax.set_xlabel("t [us]")
+    ax.set_ylabel("V [mV]")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    print(f"figure: {out}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("files", nargs="+", help="stengmc HDF5 output files")
+    parser.add_argument("--compare", action="store_true", help="overlay the voltages of all files in one figure")
+    parser.add_argument("--out", help="output PNG for --compare")
+    args = parser.parse_args()
+    if args.compare:
+        if not args.out:
+            parser.error("--compare needs --out")
+        plot_compare(args.files, args.out)
+    else:
+        for path in args.files:
+            plot_run(path)
+
+
+if __name__ == "__main__":
+    main()
