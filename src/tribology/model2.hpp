@@ -35,6 +35,11 @@ double model2_friction(const Model2Params& params, double normal_load_n, double 
 
 //! Solves m x'' + c x' + k x = F(v_b - x') for one asperity with an error-controlled,
 //! L-stable integrator; dense output between steps for the circuit.
+//! Method: RODAS4 (Hairer & Wanner) on the nondimensional system, see model2_integrator.hpp.
+//! The samples and the overtake/regrip events are taken from the quintic Hermite dense
+//! output (tribology/hermite_motion.hpp); Event::asperity is left 0 for the caller to set.
+//! @throws ModelError if the integrator fails (step size underflow, non-finite state); the
+//!         message names k, v_b and the time. @throws InputError for k <= 0 or m <= 0.
 Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, const TimeGrid& grid);
 
 //! Damped natural frequency f = sqrt(k/m) sqrt(1 - zeta^2) / 2 pi, zeta = c / (2 sqrt(k m)) [Hz].

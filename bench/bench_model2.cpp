@@ -1,0 +1,58 @@
+// Model 2 tribology of the paper's Fig. 6 case: 4 asperities (k = 25, 50, 100, 155 N/m),
+// 50 us at 100 MHz (5001 samples), Table 1/2 values, at v_b = 1 and 10 m/s. Everything
+// solve_model2 does is timed: integration, dense output, sampling and event location.
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+
+#include "tribology/model2.hpp"
+
+namespace {
+
+void fig6_tribology(benchmark::State& state, stengmc::FrictionForm form) {
+  const stengmc::TimeGrid grid = stengmc::TimeGrid::covering(50e-6, 100e6);
+  stengmc::Model2Params params;
+  params.belt_velocity_m_per_s = static_cast<double>(state.range(0));
+  params.friction_form = form;
+  std::size_t steps = 0;
+  std::size_t rejected = 0;
+  for (auto _ : state) {
+    steps = 0;
+    rejected = 0;
+    for (const double k : {25.0, 50.0, 100.0, 155.0}) {
+      stengmc::Asperity asperity;
+      asperity.stiffness_n_per_m = k;
+      const stengmc::Trajectory t = stengmc::solve_model2(asperity, params, grid);
+      benchmark::DoNotOptimize(t.x_m.data());
+      steps += t.solver_steps;
+      rejected += t.rejected_steps;
+    }
+  }
+  // Per iteration (all 4 asperities), the same in every iteration.
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["rejected"] = static_cast<double>(rejected);
+}
+
+void BM_Fig6TribologyConsistent(benchmark::State& state) {
+  fig6_tribology(state, stengmc::FrictionForm::consistent);
+}
+void BM_Fig6TribologyLiteral(benchmark::State& state) { fig6_tribology(state, stengmc::FrictionForm::literal); }
+
+BENCHMARK(BM_Fig6TribologyConsistent)
+    ->ArgName("v_b")
+    ->Arg(1)
+    ->Arg(10)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_Fig6TribologyLiteral)
+    ->ArgName("v_b")
+    ->Arg(1)
+    ->Arg(10)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+
+}  // namespace
+
+BENCHMARK_MAIN();
