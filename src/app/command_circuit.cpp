@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "circuit/circuit_solver.hpp"
+#include "core/error.hpp"
 #include "io/displacement_input.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_file.hpp"
@@ -71,18 +72,25 @@ void add_circuit_command(CLI::App& app) {
   command->add_option("-R,--load-resistance", options->params.load_resistance_ohm, "Load resistance [Ohm]")
       ->required()
       ->check(CLI::PositiveNumber);
-  command->add_option("-C,--load-capacitance", options->params.load_capacitance_f, "Load capacitance [F]", true)
+  command->add_option("-C,--load-capacitance", options->params.load_capacitance_f, "Load capacitance [F]")
+      ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--interpolation", options->interpolation, "x between samples: spline (not-a-knot) or linear (SPICE PWL)", true)
+  command->add_option("--interpolation", options->interpolation, "x between samples: spline (not-a-knot) or linear (SPICE PWL)")
+      ->capture_default_str()
       ->check(CLI::IsMember({"spline", "linear"}));
-  command->add_option("--substeps", options->params.substeps, "Radau IIA steps per sample interval", true)
+  command->add_option("--substeps", options->params.substeps, "Radau IIA steps per sample interval")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  command->add_option("--sigma", options->csv_element.charge_density_c_per_m2, "CSV input: charge density [C/m^2]", true);
-  command->add_option("--d0", options->csv_element.effective_thickness_m, "CSV input: effective thickness [m]", true)
+  command->add_option("--sigma", options->csv_element.charge_density_c_per_m2, "CSV input: charge density [C/m^2]")
+      ->capture_default_str();
+  command->add_option("--d0", options->csv_element.effective_thickness_m, "CSV input: effective thickness [m]")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  command->add_option("--width", options->csv_element.width_m, "CSV input: element width w [m]", true)
+  command->add_option("--width", options->csv_element.width_m, "CSV input: element width w [m]")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  command->add_option("--length", options->csv_element.length_m, "CSV input: element length l [m]", true)
+  command->add_option("--length", options->csv_element.length_m, "CSV input: element length l [m]")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   command->callback([options] { run(*options); });
 }

@@ -28,6 +28,7 @@ std::string quoted(const std::string& text) {
 int render_figures(const std::string& h5_path) {
   const std::string script = std::string(STENGMC_SCRIPTS_DIR) + "/plot_run.py";
   const std::string command = python() + " " + quoted(script) + " " + quoted(h5_path);
+  std::fflush(stdout);  // keep our lines ahead of the script's in a pipe
   return std::system(command.c_str());
 }
 
