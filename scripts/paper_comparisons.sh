@@ -3,5 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${STENGMC_PYTHON:-/usr/bin/python3}
-r=results/paper
+r=${1:-results/paper}
 $PY scripts/plot_run.py --compare "$r/fig4_four_identical.h5" "$r/fig4_single_same_area.h5" --out "$r/fig4_comparison.png"

@@ -1,20 +1,23 @@
 #!/usr/bin/env bash
-# Runs every study in studies/paper/ with figures; results go to results/paper/.
+# Runs every study in studies/paper/ with figures; results go to results/paper/
+# (or $STENGMC_RESULTS_DIR).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-mkdir -p results/paper
+out=${STENGMC_RESULTS_DIR:-results/paper}
+stengmc=${STENGMC_BINARY:-./build/src/stengmc}
+mkdir -p "$out"
 failed=()
 for study in studies/paper/*.toml; do
   name=$(basename "$study" .toml)
   echo "=== $name"
-  if ! ./build/src/stengmc run "$study" --out "results/paper/$name.h5" --figures; then
+  if ! "$stengmc" run "$study" --out "$out/$name.h5" --figures; then
     failed+=("$name")
   fi
 done
-bash scripts/paper_comparisons.sh
+bash scripts/paper_comparisons.sh "$out"
 echo
-echo "Results (HDF5): $(pwd)/results/paper/*.h5"
-echo "Figures (PNG):  $(pwd)/results/paper/*.png"
+echo "Results (HDF5): $(realpath "$out")/*.h5"
+echo "Figures (PNG):  $(realpath "$out")/*.png"
 if ((${#failed[@]})); then
   echo "FAILED studies: ${failed[*]}" >&2
   exit 1

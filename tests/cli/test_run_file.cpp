@@ -4,6 +4,7 @@
 
 #include <H5Cpp.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -90,10 +91,12 @@ TEST(RunFile, SameStudyTwiceGivesBitwiseIdenticalDatasets) {
 
 TEST(RunFile, CircuitCommandReadsARunFileAndReproducesItsCircuitWithTheSpline) {
   // `circuit` on a run's own x samples (spline between them) must reproduce the run's
-  // voltage, computed from the solver's dense output, closely: the spline's error at
-  // 100 MHz sampling of ~2 MHz motion is ~(omega dt)^4/384 ~ 4e-8 in x and ~1e-5 in x',
-  // so 1e-3 relative L2 in V is generous for the interpolation yet catches any layout
-  // or unit mismatch (which would be O(1)).
+  // voltage, which was computed from the solver's dense output. Starting from rest, each
+  // asperity catches the 10 m/s belt within ~36 ns (mu_s N / m = 2.8e8 m/s^2): a kink in
+  // x' that no spline through 10 ns samples can follow, so the comparison starts at
+  // 0.5 us. After that the motion is smooth and the spline's error in x' is
+  // ~(omega dt)^4 / 384 ~ 1e-5 relative (measured: 2.9e-6 in V); 1e-4 bounds that and
+  // still catches any layout or unit mismatch, which would be O(1).
   ScratchDir scratch("roundtrip");
   const std::string study = scratch.write("study.toml", study_text());
   ASSERT_EQ(run_cli("run " + study + " --out " + scratch.file("run.h5"), scratch).exit_code, 0);
@@ -103,11 +106,12 @@ TEST(RunFile, CircuitCommandReadsARunFileAndReproducesItsCircuitWithTheSpline) {
   const auto v_circuit = Hdf5Reader(scratch.file("circuit.h5")).vector("/circuit/voltage");
   ASSERT_EQ(v_run.size(), v_circuit.size());
   double num = 0.0, den = 0.0;
-  for (std::size_t j = 0; j < v_run.size(); ++j) {
+  const std::size_t start = 50;  // 0.5 us at 100 MHz
+  for (std::size_t j = start; j < v_run.size(); ++j) {
     num += (v_run[j] - v_circuit[j]) * (v_run[j] - v_circuit[j]);
     den += v_run[j] * v_run[j];
   }
-  EXPECT_LT(std::sqrt(num / den), 1e-3);
+  EXPECT_LT(std::sqrt(num / den), 1e-4);
 }
 
 }  // namespace
