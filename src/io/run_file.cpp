@@ -16,17 +16,11 @@ std::string utc_now() {
   return text;
 }
 
-template <class Field>
-std::vector<double> per_asperity(const Study& study, Field field) {
-  std::vector<double> out;
-  for (const Asperity& a : study.asperities) out.push_back(field(a));
-  return out;
-}
-
-template <class Field>
-std::vector<std::vector<double>> per_trajectory(const RunResult& result, Field field) {
-  std::vector<std::vector<double>> out;
-  for (const Trajectory& t : result.trajectories) out.push_back(field(t));
+//! One column of a per-asperity table: `field` applied to every item.
+template <class Range, class Field>
+auto column(const Range& items, Field field) {
+  std::vector<std::decay_t<decltype(field(*std::begin(items)))>> out;
+  for (const auto& item : items) out.push_back(field(item));
   return out;
 }
 
@@ -82,17 +76,10 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
-  std::vector<double> sigma, d0, w, l;
-  for (const StengElement& e : elements) {
-    sigma.push_back(e.charge_density_c_per_m2);
-    d0.push_back(e.effective_thickness_m);
-    w.push_back(e.width_m);
-    l.push_back(e.length_m);
-  }
-  file.write("/asperity/sigma", sigma, "C/m^2");
-  file.write("/asperity/d0", d0, "m");
-  file.write("/asperity/w", w, "m");
-  file.write("/asperity/l", l, "m");
+  file.write("/asperity/sigma", column(elements, [](const StengElement& e) { return e.charge_density_c_per_m2; }), "C/m^2");
+  file.write("/asperity/d0", column(elements, [](const StengElement& e) { return e.effective_thickness_m; }), "m");
+  file.write("/asperity/w", column(elements, [](const StengElement& e) { return e.width_m; }), "m");
+  file.write("/asperity/l", column(elements, [](const StengElement& e) { return e.length_m; }), "m");
 }
 
 void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params) {
@@ -118,18 +105,18 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.write("/time", result.times_s, "s");
   write_model(file, study);
 
-  file.write("/asperity/k", per_asperity(study, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
-  file.write("/asperity/m", per_asperity(study, [](const Asperity& a) { return a.mass_kg; }), "kg");
-  file.write("/asperity/N", per_asperity(study, [](const Asperity& a) { return a.normal_load_n; }), "N");
-  file.write("/asperity/h", per_asperity(study, [](const Asperity& a) { return a.height_m; }), "m");
-  file.write("/asperity/phi", per_asperity(study, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
+  file.write("/asperity/k", column(study.asperities, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
+  file.write("/asperity/m", column(study.asperities, [](const Asperity& a) { return a.mass_kg; }), "kg");
+  file.write("/asperity/N", column(study.asperities, [](const Asperity& a) { return a.normal_load_n; }), "N");
+  file.write("/asperity/h", column(study.asperities, [](const Asperity& a) { return a.height_m; }), "m");
+  file.write("/asperity/phi", column(study.asperities, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);
 
-  file.write("/asperity/x", per_trajectory(result, [](const Trajectory& t) { return t.x_m; }), "m");
-  file.write("/asperity/v", per_trajectory(result, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
-  file.write("/asperity/friction", per_trajectory(result, [](const Trajectory& t) { return t.friction_n; }), "N");
+  file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }), "m");
+  file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
+  file.write("/asperity/friction", column(result.trajectories, [](const Trajectory& t) { return t.friction_n; }), "N");
   if (!result.drives.empty()) {
     std::vector<std::vector<double>> x0;
     for (const auto& drive : result.drives) {
@@ -148,20 +135,13 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
     file.write("/asperity/x0", x0, "m");
   }
 
-  std::vector<double> frequency, slip, max_x, rms_v;
-  for (const AsperitySummary& s : summary.asperities) {
-    frequency.push_back(s.natural_frequency_hz);
-    slip.push_back(s.slip_fraction);
-    max_x.push_back(s.max_x_over_l);
-    rms_v.push_back(s.rms_velocity_m_per_s);
-  }
-  file.write("/asperity/natural_frequency", frequency, "Hz");
-  file.write("/asperity/slip_fraction", slip, "1");
-  file.write("/asperity/max_x_over_l", max_x, "1");
-  file.write("/asperity/rms_velocity", rms_v, "m/s");
-  std::vector<std::int64_t> steps;
-  for (const Trajectory& t : result.trajectories) steps.push_back(static_cast<std::int64_t>(t.solver_steps));
-  file.write("/asperity/solver_steps", steps, "1");
+  const auto& s = summary.asperities;
+  file.write("/asperity/natural_frequency", column(s, [](const AsperitySummary& a) { return a.natural_frequency_hz; }), "Hz");
+  file.write("/asperity/slip_fraction", column(s, [](const AsperitySummary& a) { return a.slip_fraction; }), "1");
+  file.write("/asperity/max_x_over_l", column(s, [](const AsperitySummary& a) { return a.max_x_over_l; }), "1");
+  file.write("/asperity/rms_velocity", column(s, [](const AsperitySummary& a) { return a.rms_velocity_m_per_s; }), "m/s");
+  file.write("/asperity/solver_steps",
+             column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }), "1");
 
   write_circuit(file, result.circuit, study.circuit);
   file.attribute("/circuit", "input", study.circuit_input == CircuitInput::actual ? "actual" : "imposed");

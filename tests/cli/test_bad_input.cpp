@@ -64,6 +64,15 @@ void expect_rejected(const Rejection& r, const std::vector<std::string>& fragmen
   for (const auto& fragment : fragments) EXPECT_NE(r.output.find(fragment), std::string::npos) << "missing '" << fragment << "' in:\n" << r.output;
 }
 
+//! Runs `circuit` on `input` and expects a non-zero exit, `fragment` in the message and no output.
+void expect_circuit_rejected(const ScratchDir& scratch, const std::string& input, const std::string& fragment) {
+  const auto r = run_cli("circuit " + input + " -R 1e6 --out " + scratch.file("out.h5"), scratch);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find(fragment), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5.tmp")));
+}
+
 TEST(BadInput, TheValidStudyRuns) {
   // Guards the tests below: each breaks exactly one thing in a study that works.
   const Rejection r = run_study_text(valid_study(), "valid");
@@ -112,27 +121,19 @@ TEST(BadInput, DisplacementReachesLengthUnderPolicyError) {
 TEST(BadInput, UnreadableDisplacementFile) {
   ScratchDir scratch("unreadable");
   const std::string not_hdf5 = scratch.write("x.h5", "this is not HDF5");
-  const auto r = run_cli("circuit " + not_hdf5 + " -R 1e6 --out " + scratch.file("out.h5"), scratch);
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("x.h5: not a readable HDF5 file"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  expect_circuit_rejected(scratch, not_hdf5, "x.h5: not a readable HDF5 file");
 }
 
 TEST(BadInput, MalformedDisplacementCsv) {
   ScratchDir scratch("malformed");
   const std::string csv = scratch.write("x.csv", "t,x1\n0,0\n1e-9,1e-7\n2e-9,abc\n3e-9,2e-7\n");
-  const auto r = run_cli("circuit " + csv + " -R 1e6 --out " + scratch.file("out.h5"), scratch);
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("x.csv:4: column 'x1' = 'abc' is not a finite number"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  expect_circuit_rejected(scratch, csv, "x.csv:4: column 'x1' = 'abc' is not a finite number");
 }
 
 TEST(BadInput, CsvRowWithAMissingField) {
   ScratchDir scratch("short-row");
   const std::string csv = scratch.write("x.csv", "t,x1\n0,0\n1e-9\n");
-  const auto r = run_cli("circuit " + csv + " -R 1e6 --out " + scratch.file("out.h5"), scratch);
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("x.csv:3: 1 fields; the header has 2"), std::string::npos) << r.output;
+  expect_circuit_rejected(scratch, csv, "x.csv:3: 1 fields; the header has 2");
 }
 
 TEST(BadInput, DisplacementHdf5MissingADataset) {
@@ -145,9 +146,7 @@ TEST(BadInput, DisplacementHdf5MissingADataset) {
     file.write("/time", t, "s");
     file.commit();
   }
-  const auto r = run_cli("circuit " + input + " -R 1e6 --out " + scratch.file("out.h5"), scratch);
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("in.h5: dataset /asperity/x is missing"), std::string::npos) << r.output;
+  expect_circuit_rejected(scratch, input, "in.h5: dataset /asperity/x is missing");
 }
 
 }  // namespace
