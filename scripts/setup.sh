@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libfftw3-dev libboost-dev libboost-math-dev
   libhdf5-dev libtomlplusplus-dev libcli11-dev
-  libomp-dev libopenmpi-dev openmpi-bin
+  libomp-dev libopenmpi-dev openmpi-bin  # for the ensemble runner (OpenMP, MPI) and spectra (FFTW)
   libgtest-dev libgmock-dev libbenchmark-dev
   ngspice
   python3 python3-h5py python3-matplotlib python3-numpy

@@ -1,10 +1,13 @@
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/validators.hpp"
 #include "circuit/circuit_solver.hpp"
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "io/displacement_input.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_file.hpp"
@@ -23,33 +26,56 @@ struct CircuitOptions {
   StengElement csv_element;  // Table 2 defaults
 };
 
+std::vector<std::unique_ptr<Motion>> interpolate(const DisplacementInput& input, Interpolation interpolation,
+                                                 const std::string& file) {
+  std::vector<std::unique_ptr<Motion>> motions;
+  for (std::size_t i = 0; i < input.x_m.size(); ++i) {
+    try {
+      motions.push_back(std::make_unique<SampledMotion>(input.times_s, input.x_m[i], interpolation));
+    } catch (const InputError& e) {
+      throw InputError(file + ": element " + std::to_string(i + 1) + ": " + e.what());
+    }
+    // A spline can overshoot l between samples that all stay below it.
+    try {
+      if (const auto exit = first_domain_exit(*motions.back(), input.times_s, input.x_m[i], input.elements[i].length_m))
+        throw InputError(file + ": element " + std::to_string(i + 1) + ": x reaches l = " +
+                         std::to_string(input.elements[i].length_m) + " m at t = " + std::to_string(*exit) +
+                         " s between samples (" + std::string(interpolation_name(interpolation)) +
+                         " interpolation); the S-TENG element formulas (MODEL.md §2) hold only for x < l");
+    } catch (const ModelError& e) {
+      throw InputError(file + ": element " + std::to_string(i + 1) + ": " + e.what());
+    }
+  }
+  return motions;
+}
+
 void run(const CircuitOptions& options) {
+  std::error_code ignored;
+  if (std::filesystem::equivalent(options.input, options.out, ignored))
+    throw InputError("--out " + options.out + " is the input file; choose another output name");
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
   const DisplacementInput input = csv ? read_displacement_csv(options.input, options.csv_element)
                                       : read_displacement_hdf5(options.input);
   const Interpolation interpolation = parse_interpolation(options.interpolation, "--interpolation");
-  std::vector<std::unique_ptr<Motion>> motions;
+  const auto motions = interpolate(input, interpolation, options.input);
   std::vector<const Motion*> pointers;
-  for (std::size_t i = 0; i < input.x_m.size(); ++i) {
-    motions.push_back(std::make_unique<SampledMotion>(input.times_s, input.x_m[i], interpolation));
-    pointers.push_back(motions.back().get());
-    // A spline can overshoot between samples that all stay below l.
-    if (const auto exit = first_domain_exit(*motions.back(), input.times_s, input.x_m[i], input.elements[i].length_m))
-      throw InputError(options.input + ": element " + std::to_string(i + 1) + " reaches l at t = " + std::to_string(*exit) + " s");
-  }
+  for (const auto& m : motions) pointers.push_back(m.get());
   std::printf("stengmc circuit %s: %zu elements, %zu samples, %s interpolation, R = %.4g Ohm, C_L = %.4g F\n",
               options.input.c_str(), input.x_m.size(), input.times_s.size(), options.interpolation.c_str(),
               options.params.load_resistance_ohm, options.params.load_capacitance_f);
-  const CircuitResult circuit = solve_circuit(input.elements, pointers, input.times_s, options.params);
+  Progress progress("circuit", input.times_s.size());
+  const CircuitResult circuit = solve_circuit(input.elements, pointers, input.times_s, options.params, &progress);
 
   Hdf5Writer file(options.out);
   write_provenance(file, {"stengmc-circuit", options.input, "", 0});
   file.attribute("/", "interpolation", interpolation_name(interpolation));
   file.write("/time", input.times_s, "s");
   file.write("/asperity/x", input.x_m, "m");
+  // Left limits, like the currents: with linear interpolation x' of the interval that
+  // ends at the sample (a PWL source's slope there), which is what produced V at t_j.
   std::vector<std::vector<double>> v(input.x_m.size());
   for (std::size_t i = 0; i < input.x_m.size(); ++i)
-    for (double t : input.times_s) v[i].push_back(motions[i]->at(t).v_m_per_s);
+    for (double t : input.times_s) v[i].push_back(motions[i]->at(t, Side::left).v_m_per_s);
   file.write("/asperity/v", v, "m/s");
   write_elements(file, input.elements);
   write_circuit(file, circuit, options.params);
@@ -71,27 +97,27 @@ void add_circuit_command(CLI::App& app) {
   command->add_option("-o,--out", options->out, "Output HDF5 file")->required();
   command->add_option("-R,--load-resistance", options->params.load_resistance_ohm, "Load resistance [Ohm]")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(false));
   command->add_option("-C,--load-capacitance", options->params.load_capacitance_f, "Load capacitance [F]")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_number(true));
   command->add_option("--interpolation", options->interpolation, "x between samples: spline (not-a-knot) or linear (SPICE PWL)")
       ->capture_default_str()
       ->check(CLI::IsMember({"spline", "linear"}));
   command->add_option("--substeps", options->params.substeps, "Radau IIA steps per sample interval")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000).description("INTEGER in 1..1e6"));
   command->add_option("--sigma", options->csv_element.charge_density_c_per_m2, "CSV input: charge density [C/m^2]")
       ->capture_default_str();
   command->add_option("--d0", options->csv_element.effective_thickness_m, "CSV input: effective thickness [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(false));
   command->add_option("--width", options->csv_element.width_m, "CSV input: element width w [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(false));
   command->add_option("--length", options->csv_element.length_m, "CSV input: element length l [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(false));
   command->callback([options] { run(*options); });
 }
 

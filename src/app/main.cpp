@@ -1,5 +1,7 @@
 // stengmc: the command line. It parses, calls the library, prints, and is the only
-// place that catches errors and chooses the exit code.
+// place that catches errors and chooses the exit code:
+//   0 success, 1 unexpected failure, 2 bad input (study, file or command line),
+//   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
@@ -7,9 +9,20 @@
 #include "core/build_info.hpp"
 #include "core/error.hpp"
 
+namespace {
+
+int fail(const char* kind, const char* what, int code) {
+  std::fflush(stdout);  // what was printed so far stays ahead of the error in a combined log
+  std::fprintf(stderr, "stengmc: %s: %s\n", kind, what);
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"
-               "Every quantity is in SI units. Model: MODEL.md; file layouts: README.md."};
+               "Every quantity is in SI units. Model: MODEL.md; file layouts: README.md.\n"
+               "Exit codes: 0 ok, 2 bad input, 3 model out of its validity domain, 1 other failure."};
   app.set_version_flag("--version", std::string("stengmc ") + stengmc::program_version() + " (git " +
                                         stengmc::git_revision() + ")");
   app.require_subcommand(1);
@@ -19,16 +32,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are "errors" with code 0; every real usage error is bad input.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const stengmc::InputError& e) {
-    std::fprintf(stderr, "stengmc: input error: %s\n", e.what());
-    return 2;
+    return fail("input error", e.what(), 2);
   } catch (const stengmc::ModelError& e) {
-    std::fprintf(stderr, "stengmc: model error: %s\n", e.what());
-    return 3;
+    return fail("model error", e.what(), 3);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "stengmc: error: %s\n", e.what());
-    return 1;
+    return fail("error", e.what(), 1);
+  } catch (...) {
+    return fail("error", "unknown failure (please report it with the command line and input files)", 1);
   }
   return 0;
 }

@@ -11,6 +11,9 @@ namespace stengmc {
 
 namespace {
 
+// The run-file format this reader understands (io/run_file.hpp writes it).
+constexpr std::int64_t SUPPORTED_FORMAT_VERSION = 1;
+
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> fields;
   std::stringstream stream(line);
@@ -30,6 +33,12 @@ std::string trim(std::string text) {
 
 DisplacementInput read_displacement_hdf5(const std::string& path) {
   Hdf5Reader file(path);
+  // A stengmc file says what it is; refuse one written by a newer, incompatible format.
+  const std::string file_type = file.string_attribute("/", "file_type");
+  const auto version = file.integer_attribute("/", "format_version");
+  if (file_type.rfind("stengmc", 0) == 0 && version && *version > SUPPORTED_FORMAT_VERSION)
+    throw InputError(path + ": format_version " + std::to_string(*version) + " is newer than this stengmc reads (" +
+                     std::to_string(SUPPORTED_FORMAT_VERSION) + "); update stengmc");
   DisplacementInput input;
   input.times_s = file.vector("/time");
   input.x_m = file.matrix("/asperity/x");

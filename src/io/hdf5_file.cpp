@@ -1,5 +1,7 @@
 #include "io/hdf5_file.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,18 +17,37 @@ const H5::StrType& string_type() {
   return type;
 }
 
+//! Runs HDF5 calls, turning their exceptions (which do not derive from std::exception)
+//! into ours, with the file and the object named, so the CLI reports them and the stack
+//! unwinds (which removes a half-written temporary file).
+template <class Failure, class Call>
+auto guarded(const std::string& file, const std::string& what, Call call) -> decltype(call()) {
+  try {
+    return call();
+  } catch (const H5::Exception& e) {
+    throw Failure(file + ": " + what + ": " + e.getDetailMsg());
+  }
+}
+
+// Datasets larger than this are refused before allocating: a corrupt file can declare
+// 1e12 elements.
+constexpr hsize_t MAX_READ_ELEMENTS = 500'000'000;
+
 void check_finite(const std::string& path, std::span<const double> values) {
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
       throw Error("refusing to write a non-finite value into " + path + " (element " + std::to_string(i) +
-                  "): this is a bug, please report it with the study file");
+                  "); no output was written");
 }
 
 }  // namespace
 
 // ---------------------------------------------------------------- Hdf5Writer
 
-Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)), temporary_path_(path_ + ".tmp") {
+Hdf5Writer::Hdf5Writer(std::string path)
+    // The process id keeps two runs writing the same output from clobbering each other's
+    // temporary file; whichever finishes last wins the rename, each file being complete.
+    : path_(std::move(path)), temporary_path_(path_ + "." + std::to_string(::getpid()) + ".tmp") {
   H5::Exception::dontPrint();
   const auto parent = std::filesystem::path(path_).parent_path();
   std::error_code ignored;
@@ -66,11 +87,13 @@ void Hdf5Writer::set_units(H5::DataSet& dataset, std::string_view units) {
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units) {
   check_finite(path, values);
-  const hsize_t dims[1] = {values.size()};
-  group_for(path);
-  H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));
-  if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
-  set_units(dataset, units);
+  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+    const hsize_t dims[1] = {values.size()};
+    group_for(path);
+    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));
+    if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
+    set_units(dataset, units);
+  });
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units) {
@@ -82,54 +105,69 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
     flat.insert(flat.end(), row.begin(), row.end());
   }
   check_finite(path, flat);
-  const hsize_t dims[2] = {rows.size(), columns};
-  group_for(path);
-  H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
-  if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
-  set_units(dataset, units);
+  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+    const hsize_t dims[2] = {rows.size(), columns};
+    group_for(path);
+    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
+    if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
+    set_units(dataset, units);
+  });
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units) {
-  const hsize_t dims[1] = {values.size()};
-  group_for(path);
-  H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims));
-  if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
-  set_units(dataset, units);
+  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+    const hsize_t dims[1] = {values.size()};
+    group_for(path);
+    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims));
+    if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
+    set_units(dataset, units);
+  });
 }
 
-void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values) {
-  std::vector<const char*> pointers;
-  pointers.reserve(values.size());
-  for (const auto& v : values) pointers.push_back(v.c_str());
-  const hsize_t dims[1] = {values.size()};
-  group_for(path);
-  H5::DataSet dataset = file_.createDataSet(path, string_type(), H5::DataSpace(1, dims));
-  if (!values.empty()) dataset.write(pointers.data(), string_type());
+void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values, std::string_view units) {
+  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+    std::vector<const char*> pointers;
+    pointers.reserve(values.size());
+    for (const auto& v : values) pointers.push_back(v.c_str());
+    const hsize_t dims[1] = {values.size()};
+    group_for(path);
+    H5::DataSet dataset = file_.createDataSet(path, string_type(), H5::DataSpace(1, dims));
+    if (!values.empty()) dataset.write(pointers.data(), string_type());
+    set_units(dataset, units);
+  });
+}
+
+void Hdf5Writer::group(const std::string& path) {
+  guarded<Error>(temporary_path_, "cannot create group " + path, [&] { group_for(path + "/"); });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::string_view value) {
-  H5::Group group = file_.openGroup(object);
-  H5::Attribute attribute = group.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
-  attribute.write(string_type(), std::string(value));
+  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
+    H5::Group group = file_.openGroup(object);
+    H5::Attribute attribute = group.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
+    attribute.write(string_type(), std::string(value));
+  });
 }
-
-void Hdf5Writer::group(const std::string& path) { group_for(path + "/"); }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, double value) {
   if (!std::isfinite(value)) throw Error("refusing to write a non-finite attribute " + object + "@" + name);
-  H5::Group group = file_.openGroup(object);
-  H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
-  attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
+  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
+    H5::Group group = file_.openGroup(object);
+    H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
+    attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
+  });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::int64_t value) {
-  H5::Group group = file_.openGroup(object);
-  H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
-  attribute.write(H5::PredType::NATIVE_INT64, &value);
+  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
+    H5::Group group = file_.openGroup(object);
+    H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
+    attribute.write(H5::PredType::NATIVE_INT64, &value);
+  });
 }
 
 void Hdf5Writer::commit() {
-  file_.close();
+  guarded<Error>(temporary_path_, "cannot close the file", [&] { file_.close(); });
   std::error_code error;
   std::filesystem::rename(temporary_path_, path_, error);
   if (error) throw Error(path_ + ": cannot move the finished output into place: " + error.message());
@@ -160,45 +198,81 @@ bool Hdf5Reader::has(const std::string& path) const {
   }
 }
 
+namespace {
+
+//! Opens `path` as a numeric dataset of `rank` dimensions and returns its extent.
+std::vector<hsize_t> numeric_extent(const H5::H5File& file, const std::string& file_name, const std::string& path,
+                                    int rank, H5::DataSet& dataset) {
+  if (H5Oexists_by_name(file.getId(), path.c_str(), H5P_DEFAULT) <= 0 ||
+      file.childObjType(path) != H5O_TYPE_DATASET)
+    throw InputError(file_name + ": " + path + " is not a dataset");
+  dataset = file.openDataSet(path);
+  H5::DataSpace space = dataset.getSpace();
+  if (space.getSimpleExtentNdims() != rank)
+    throw InputError(file_name + ": dataset " + path + " must be " + (rank == 1 ? "one" : "two") +
+                     "-dimensional" + (rank == 2 ? " (asperities x samples)" : ""));
+  const H5T_class_t type = dataset.getTypeClass();
+  if (type != H5T_FLOAT && type != H5T_INTEGER) throw InputError(file_name + ": dataset " + path + " must hold numbers");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  space.getSimpleExtentDims(dims.data());
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  if (total > MAX_READ_ELEMENTS)
+    throw InputError(file_name + ": dataset " + path + " has " + std::to_string(total) + " elements, above the limit of " +
+                     std::to_string(MAX_READ_ELEMENTS));
+  return dims;
+}
+
+}  // namespace
+
 std::vector<double> Hdf5Reader::vector(const std::string& path) const {
   if (!has(path)) throw InputError(path_ + ": dataset " + path + " is missing");
-  H5::DataSet dataset = file_.openDataSet(path);
-  H5::DataSpace space = dataset.getSpace();
-  if (space.getSimpleExtentNdims() != 1) throw InputError(path_ + ": dataset " + path + " must be one-dimensional");
-  hsize_t dims[1] = {0};
-  space.getSimpleExtentDims(dims);
-  const H5T_class_t type = dataset.getTypeClass();
-  if (type != H5T_FLOAT && type != H5T_INTEGER) throw InputError(path_ + ": dataset " + path + " must hold numbers");
-  std::vector<double> values(dims[0]);
-  if (!values.empty()) dataset.read(values.data(), H5::PredType::NATIVE_DOUBLE);
-  return values;
+  return guarded<InputError>(path_, "cannot read " + path, [&] {
+    H5::DataSet dataset;
+    const auto dims = numeric_extent(file_, path_, path, 1, dataset);
+    std::vector<double> values(dims[0]);
+    if (!values.empty()) dataset.read(values.data(), H5::PredType::NATIVE_DOUBLE);
+    return values;
+  });
 }
 
 std::vector<std::vector<double>> Hdf5Reader::matrix(const std::string& path) const {
   if (!has(path)) throw InputError(path_ + ": dataset " + path + " is missing");
-  H5::DataSet dataset = file_.openDataSet(path);
-  H5::DataSpace space = dataset.getSpace();
-  if (space.getSimpleExtentNdims() != 2)
-    throw InputError(path_ + ": dataset " + path + " must be two-dimensional (asperities x samples)");
-  if (dataset.getTypeClass() != H5T_FLOAT && dataset.getTypeClass() != H5T_INTEGER)
-    throw InputError(path_ + ": dataset " + path + " must hold numbers");
-  hsize_t dims[2] = {0, 0};
-  space.getSimpleExtentDims(dims);
-  std::vector<double> flat(dims[0] * dims[1]);
-  if (!flat.empty()) dataset.read(flat.data(), H5::PredType::NATIVE_DOUBLE);
-  std::vector<std::vector<double>> rows(dims[0]);
-  for (hsize_t i = 0; i < dims[0]; ++i)
-    rows[i].assign(flat.begin() + static_cast<std::ptrdiff_t>(i * dims[1]), flat.begin() + static_cast<std::ptrdiff_t>((i + 1) * dims[1]));
-  return rows;
+  return guarded<InputError>(path_, "cannot read " + path, [&] {
+    H5::DataSet dataset;
+    const auto dims = numeric_extent(file_, path_, path, 2, dataset);
+    std::vector<double> flat(dims[0] * dims[1]);
+    if (!flat.empty()) dataset.read(flat.data(), H5::PredType::NATIVE_DOUBLE);
+    std::vector<std::vector<double>> rows(dims[0]);
+    for (hsize_t i = 0; i < dims[0]; ++i)
+      rows[i].assign(flat.begin() + static_cast<std::ptrdiff_t>(i * dims[1]),
+                     flat.begin() + static_cast<std::ptrdiff_t>((i + 1) * dims[1]));
+    return rows;
+  });
 }
 
 std::string Hdf5Reader::string_attribute(const std::string& object, const std::string& name) const {
-  H5::Group group = file_.openGroup(object);
-  if (!group.attrExists(name)) return "";
-  H5::Attribute attribute = group.openAttribute(name);
-  std::string value;
-  attribute.read(attribute.getStrType(), value);
-  return value;
+  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&] {
+    H5::Group group = file_.openGroup(object);
+    if (!group.attrExists(name)) return std::string();
+    H5::Attribute attribute = group.openAttribute(name);
+    if (attribute.getTypeClass() != H5T_STRING) throw InputError(path_ + ": attribute " + object + "@" + name + " is not text");
+    std::string value;
+    attribute.read(attribute.getStrType(), value);
+    return value;
+  });
+}
+
+std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& object, const std::string& name) const {
+  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<std::int64_t> {
+    H5::Group group = file_.openGroup(object);
+    if (!group.attrExists(name)) return std::nullopt;
+    H5::Attribute attribute = group.openAttribute(name);
+    if (attribute.getTypeClass() != H5T_INTEGER) throw InputError(path_ + ": attribute " + object + "@" + name + " is not an integer");
+    std::int64_t value = 0;
+    attribute.read(H5::PredType::NATIVE_INT64, &value);
+    return value;
+  });
 }
 
 }  // namespace stengmc

@@ -4,6 +4,7 @@
 #include <H5Cpp.h>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -11,7 +12,10 @@
 
 namespace stengmc {
 
-//! Writes a new HDF5 file under a temporary name; `commit()` renames it into place, and
+//! Every HDF5 failure is rethrown as stengmc::Error (writer) or InputError (reader)
+//! naming the file and the object.
+//!
+//! Writes a new HDF5 file under a temporary name (`<path>.<pid>.tmp`); `commit()` renames it into place, and
 //! a writer destroyed before that removes the temporary file, so a killed or failed run
 //! never leaves a half-written result under the final name.
 class Hdf5Writer {
@@ -28,7 +32,7 @@ class Hdf5Writer {
   //! 1-D dataset of integers.
   void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units);
   //! 1-D dataset of variable-length strings.
-  void write(const std::string& path, const std::vector<std::string>& values);
+  void write(const std::string& path, const std::vector<std::string>& values, std::string_view units);
 
   //! Creates the group (and its parents) if it does not exist yet.
   void group(const std::string& path);
@@ -64,6 +68,8 @@ class Hdf5Reader {
   [[nodiscard]] std::vector<std::vector<double>> matrix(const std::string& path) const;
   //! String attribute, or "" when absent.
   [[nodiscard]] std::string string_attribute(const std::string& object, const std::string& name) const;
+  //! Integer attribute, or nothing when absent.
+  [[nodiscard]] std::optional<std::int64_t> integer_attribute(const std::string& object, const std::string& name) const;
 
  private:
   std::string path_;

@@ -35,6 +35,8 @@ void write_model(Hdf5Writer& file, const Study& study) {
     file.attribute("/model", "drive_angular_frequency_rad_per_s", p.drive_angular_frequency_rad_per_s);
     file.attribute("/model", "solver", p.solver == Model1Solver::exact ? "exact" : "euler_cromer");
     file.attribute("/model", "euler_cromer_substeps", static_cast<std::int64_t>(p.euler_cromer_substeps));
+    file.attribute("/model", "friction_convention",
+                   "tangential force the asperity transmits: mu_k N sign(x') sliding, k (x0 - x) stuck (MODEL.md 1)");
   } else {
     const Model2Params& p = study.model2;
     file.attribute("/model", "static_friction", p.friction.static_coefficient);
@@ -45,6 +47,7 @@ void write_model(Hdf5Writer& file, const Study& study) {
     file.attribute("/model", "atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
     file.attribute("/model", "friction_form", p.friction_form == FrictionForm::consistent ? "consistent" : "literal");
     file.attribute("/model", "relative_tolerance", p.relative_tolerance);
+    file.attribute("/model", "friction_convention", "F(v_r), the belt's friction force on the asperity, v_r = v_b - x' (MODEL.md 1)");
   }
 }
 
@@ -59,7 +62,7 @@ void write_events(Hdf5Writer& file, const RunResult& result) {
   }
   file.write("/events/time", times, "s");
   file.write("/events/asperity", asperity, "index");
-  file.write("/events/kind", kinds);
+  file.write("/events/kind", kinds, "text");
 }
 
 }  // namespace
@@ -86,6 +89,7 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
   file.write("/circuit/voltage", circuit.voltage_v, "V");
   file.write("/circuit/charge", circuit.charge_c, "C");
   file.write("/asperity/current", circuit.current_a, "A");
+  file.write("/asperity/charge", circuit.element_charge_c, "C");
   file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
   file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
   file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));

@@ -18,7 +18,7 @@ std::string_view domain_policy_name(DomainPolicy policy) { return policy == Doma
 namespace {
 
 // Output arrays are n x M doubles, several of them; refuse studies that cannot fit.
-constexpr double MAX_SAMPLES_TIMES_ASPERITIES = 2e8;
+constexpr double MAX_SAMPLES_TIMES_ASPERITIES = 5e7;  // ~2 GB of traces
 
 std::string number_text(double value) {
   std::ostringstream out;
@@ -30,7 +30,7 @@ std::string number_text(double value) {
 FrictionCoefficients read_friction(TomlTable& model) {
   FrictionCoefficients f;
   f.static_coefficient = model.positive("static_friction", f.static_coefficient);
-  f.kinetic_coefficient = model.positive("kinetic_friction", f.kinetic_coefficient);
+  f.kinetic_coefficient = model.non_negative("kinetic_friction", f.kinetic_coefficient);
   if (f.static_coefficient < f.kinetic_coefficient)
     model.fail("static_friction", "= " + number_text(f.static_coefficient) + " must be >= kinetic_friction = " +
                                       number_text(f.kinetic_coefficient));
@@ -40,6 +40,7 @@ FrictionCoefficients read_friction(TomlTable& model) {
 void read_model(TomlTable& root, Study& study) {
   auto model = root.table("model");
   if (!model) root.fail("model", "is missing: a [model] table with kind = \"model1\" or \"model2\" is required");
+  if (!model->has("kind")) model->fail("kind", "is missing: \"model1\" (imposed sinusoid) or \"model2\" (moving belt)");
   const std::string kind = model->choice("kind", "", {"model1", "model2"});
   if (kind == "model1") {
     study.model = ModelKind::model1;
@@ -50,8 +51,9 @@ void read_model(TomlTable& root, Study& study) {
         2.0 * PI * model->positive("drive_frequency_hz", p.drive_angular_frequency_rad_per_s / (2.0 * PI));
     const std::string solver = model->choice("solver", "exact", {"exact", "euler_cromer"});
     p.solver = solver == "exact" ? Model1Solver::exact : Model1Solver::euler_cromer;
-    if (p.solver == Model1Solver::euler_cromer)
-      p.euler_cromer_substeps = static_cast<std::size_t>(model->integer("euler_cromer_substeps", 1, 1));
+    // Read whatever the solver, so switching `solver` back and forth never makes it "unknown".
+    p.euler_cromer_substeps = static_cast<std::size_t>(model->integer("euler_cromer_substeps", 1, 1));
+    if (p.euler_cromer_substeps > 1'000'000) model->fail("euler_cromer_substeps", "must be <= 1000000");
   } else {
     study.model = ModelKind::model2;
     Model2Params& p = study.model2;
@@ -96,6 +98,7 @@ void read_circuit(TomlTable& root, Study& study) {
   c.load_resistance_ohm = circuit->positive("load_resistance_ohm", c.load_resistance_ohm);
   c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
   c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
+  if (c.substeps > 1000) circuit->fail("substeps", "= " + std::to_string(c.substeps) + " must be <= 1000");
   const std::string input = circuit->choice("input", "actual", {"actual", "imposed"});
   study.circuit_input = input == "actual" ? CircuitInput::actual : CircuitInput::imposed;
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
@@ -144,7 +147,12 @@ Study parse(TomlDocument& document) {
   document.reject_unknown_keys();
 
   check_sample_rate(root, study);
-  const double samples = study.duration_s * study.sample_rate_hz + 1.0;
+  // The grid must end at duration_s: a fractional sample count would silently change it.
+  const double intervals = study.duration_s * study.sample_rate_hz;
+  if (std::abs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals))
+    root.fail("duration_s", "x sample_rate_hz = " + number_text(intervals) +
+                                " is not a whole number of sample intervals; adjust duration_s or sample_rate_hz");
+  const double samples = std::round(intervals) + 1.0;
   if (samples < 2.0)
     root.fail("duration_s", "x sample_rate_hz gives fewer than 2 samples; lengthen duration_s or raise sample_rate_hz");
   if (samples * static_cast<double>(study.asperities.size()) > MAX_SAMPLES_TIMES_ASPERITIES)

@@ -1,6 +1,7 @@
 #include "pipeline/run_study.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -40,16 +41,29 @@ Trajectory solve_one(const Study& study, const Asperity& asperity, const TimeGri
                                           : solve_model2(asperity, study.model2, grid);
 }
 
+//! Says plainly when a Model 1 asperity never moved: A <= mu_s N / k (paper Eq. 1) and
+//! nothing in its initial state made it slip either. Judged on the solved motion, so an
+//! initial displacement or velocity that does make it slip is not misreported.
 void note_model1_validity(const Study& study, RunResult& result) {
   if (study.model != ModelKind::model1) return;
   for (std::size_t i = 0; i < study.asperities.size(); ++i) {
     const Asperity& a = study.asperities[i];
-    if (model1_can_slip(study.model1, a)) continue;
+    const Trajectory& t = result.trajectories[i];
+    const bool moved = !t.events.empty() || std::any_of(t.v_m_per_s.begin(), t.v_m_per_s.end(), [](double v) { return v != 0.0; });
+    if (moved || model1_can_slip(study.model1, a)) continue;
     const double threshold = study.model1.friction.static_coefficient * a.normal_load_n / a.stiffness_n_per_m;
     result.notes.push_back(describe(a, i) + " never slips: the drive amplitude A = " +
                            micro(study.model1.drive_amplitude_m) + " um is not above mu_s N / k = " + micro(threshold) +
-                           " um (paper Eq. 1), so x stays 0 and its element gives no signal");
+                           " um (paper Eq. 1), so x stays at its initial value and its element gives no signal");
   }
+}
+
+//! A solver that returns NaN or Inf is reported with the asperity, never written.
+void check_finite(const Trajectory& trajectory, const Asperity& a, std::size_t index, const TimeGrid& grid) {
+  for (std::size_t j = 0; j < trajectory.x_m.size(); ++j)
+    if (!std::isfinite(trajectory.x_m[j]) || !std::isfinite(trajectory.v_m_per_s[j]) || !std::isfinite(trajectory.friction_n[j]))
+      throw ModelError(describe(a, index) + ": the tribology produced a non-finite state at t = " + micro(grid.at(j)) +
+                       " us; check the asperity's parameters for physically plausible values");
 }
 
 //! Finds the first time any element's displacement reaches its l; applies the policy.
@@ -58,7 +72,12 @@ std::size_t valid_prefix(const Study& study, const std::vector<const Motion*>& i
   double first_exit = INFINITY;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const Asperity& a = study.asperities[i];
-    const auto exit = first_domain_exit(*inputs[i], result.times_s, input_samples[i], a.element.length_m);
+    std::optional<double> exit;
+    try {
+      exit = first_domain_exit(*inputs[i], result.times_s, input_samples[i], a.element.length_m);
+    } catch (const ModelError& e) {
+      throw ModelError(describe(a, i) + ": " + e.what());
+    }
     if (!exit) continue;
     result.events.push_back({*exit, i, EventKind::domain_exit});
     const std::string what = describe(a, i) + ": x reaches l = " + micro(a.element.length_m) + " um at t = " +
@@ -88,6 +107,7 @@ RunResult run_study(const Study& study) {
     Progress progress("tribology", n);
     for (std::size_t i = 0; i < n; ++i) {
       result.trajectories.push_back(solve_one(study, study.asperities[i], grid));
+      check_finite(result.trajectories.back(), study.asperities[i], i, grid);
       for (Event e : result.trajectories.back().events) {
         e.asperity = i;
         result.events.push_back(e);
@@ -120,8 +140,11 @@ RunResult run_study(const Study& study) {
   const auto circuit_start = Clock::now();
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
-  result.circuit = solve_circuit(elements, inputs,
-                                 std::span<const double>(result.times_s.data(), result.circuit_samples), study.circuit);
+  {
+    Progress progress("circuit", result.circuit_samples);
+    result.circuit = solve_circuit(elements, inputs, std::span<const double>(result.times_s.data(), result.circuit_samples),
+                                   study.circuit, &progress);
+  }
   result.circuit_seconds = seconds_since(circuit_start);
   return result;
 }

@@ -30,12 +30,21 @@ Asperity read_asperity(TomlTable& table, const Asperity& base) {
 
 }  // namespace
 
+namespace {
+// A fixed list is written out by hand; anything larger is a typo or belongs to a random
+// population, and would exhaust memory before any other check could speak.
+constexpr long long MAX_FIXED_ASPERITIES = 100'000;
+}  // namespace
+
 std::vector<Asperity> read_fixed_population(TomlTable& surface) {
   Asperity defaults;
   if (auto table = surface.table("defaults")) defaults = read_asperity(*table, defaults);
   std::vector<Asperity> asperities;
   for (TomlTable& entry : surface.table_array("asperity")) {
     const auto count = entry.integer("count", 1, 1);
+    if (count > MAX_FIXED_ASPERITIES - static_cast<long long>(asperities.size()))
+      entry.fail("count", "= " + std::to_string(count) + " brings the list above " + std::to_string(MAX_FIXED_ASPERITIES) +
+                              " asperities, the limit for a fixed list");
     const Asperity a = read_asperity(entry, defaults);
     asperities.insert(asperities.end(), static_cast<std::size_t>(count), a);
   }

@@ -122,5 +122,30 @@ TEST(Study, RejectsImposedInputOutsideModel1) {
   EXPECT_NE(error_of(text).find("needs [model] kind = \"model1\""), std::string::npos) << error_of(text);
 }
 
+TEST(Study, RejectsInitialDisplacementAtOrBeyondL) {
+  std::string text = MINIMAL + "initial_displacement_m = 10e-6\n";
+  EXPECT_NE(error_of(text).find("initial_displacement_m must be < length_m"), std::string::npos) << error_of(text);
+}
+
+TEST(Study, RejectsRunsTooLargeForMemory) {
+  std::string text = MINIMAL;
+  text.replace(text.find("duration_s = 1e-6"), 17, "duration_s = 1.0");  // 1e8 samples
+  EXPECT_NE(error_of(text).find("above the limit"), std::string::npos) << error_of(text);
+  const std::string many = MINIMAL + "count = 100000000000\n";
+  EXPECT_NE(error_of(many).find("count = 100000000000 brings the list above"), std::string::npos) << error_of(many);
+}
+
+TEST(Study, RejectsDurationThatIsNotAWholeNumberOfSamples) {
+  std::string text = MINIMAL;
+  text.replace(text.find("duration_s = 1e-6"), 17, "duration_s = 1.006e-6");
+  EXPECT_NE(error_of(text).find("is not a whole number of sample intervals"), std::string::npos) << error_of(text);
+}
+
+TEST(Study, RejectsMissingModelKind) {
+  std::string text = MINIMAL;
+  text.replace(text.find("kind = \"model2\""), 15, "");
+  EXPECT_NE(error_of(text).find("[model] kind is missing"), std::string::npos) << error_of(text);
+}
+
 }  // namespace
 }  // namespace stengmc

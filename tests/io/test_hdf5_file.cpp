@@ -1,0 +1,76 @@
+// The HDF5 writer never leaves a partial or non-finite file (README: output files).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "io/hdf5_file.hpp"
+#include "support/cli_runner.hpp"
+
+namespace stengmc {
+namespace {
+
+bool any_temporary(const std::string& folder) {
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().extension() == ".tmp") return true;
+  return false;
+}
+
+TEST(Hdf5Writer, RefusesNonFiniteValuesAndLeavesNoFileBehind) {
+  testing::ScratchDir scratch("hdf5-nan");
+  const std::string out = scratch.file("out.h5");
+  for (double bad : {std::nan(""), static_cast<double>(INFINITY), -static_cast<double>(INFINITY)}) {
+    {
+      Hdf5Writer file(out);
+      const std::vector<double> values{1.0, bad, 3.0};
+      EXPECT_THROW(file.write("/x", values, "m"), Error);
+      EXPECT_THROW(file.attribute("/", "a", bad), Error);
+    }  // destroyed without commit
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(any_temporary(scratch.file("")));
+  }
+}
+
+TEST(Hdf5Writer, HdfFailuresBecomeErrorsNamingTheFile) {
+  testing::ScratchDir scratch("hdf5-fail");
+  Hdf5Writer file(scratch.file("out.h5"));
+  const std::vector<double> values{1.0};
+  file.write("/x", values, "m");
+  try {
+    file.write("/x", values, "m");  // the dataset exists already: HDF5 refuses
+    FAIL() << "no exception";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write /x"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Hdf5Writer, CommitMovesTheCompleteFileIntoPlace) {
+  testing::ScratchDir scratch("hdf5-commit");
+  const std::string out = scratch.file("out.h5");
+  {
+    Hdf5Writer file(out);
+    const std::vector<double> values{1.0, 2.0};
+    file.write("/group/x", values, "m");
+    EXPECT_FALSE(std::filesystem::exists(out));  // not before commit
+    file.commit();
+  }
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_FALSE(any_temporary(scratch.file("")));
+  EXPECT_EQ(Hdf5Reader(out).vector("/group/x"), (std::vector<double>{1.0, 2.0}));
+}
+
+TEST(Hdf5Reader, AGroupWhereADatasetIsExpectedIsAnInputError) {
+  testing::ScratchDir scratch("hdf5-group");
+  const std::string out = scratch.file("in.h5");
+  {
+    Hdf5Writer file(out);
+    const std::vector<double> values{1.0};
+    file.write("/asperity/x/inner", values, "m");  // /asperity/x is a group
+    file.commit();
+  }
+  EXPECT_THROW((void)Hdf5Reader(out).matrix("/asperity/x"), InputError);
+}
+
+}  // namespace
+}  // namespace stengmc
