@@ -45,14 +45,17 @@ def labels(f):
 def plot_run(path):
     f = open_checked(path)
     t_us = f["time"][:] * 1e6
-    x = f["asperity/x"][:]
     names = labels(f)
     circuit_samples = f["circuit/voltage"].shape[0]
     tc_us = t_us[:circuit_samples]
-    panels = ["x", "v"] + (["friction"] if "asperity/friction" in f else []) + ["voltage", "charge", "current"]
+    # A study may leave traces out ([output] traces): plot what the file has.
+    wanted = {"x": "asperity/x", "v": "asperity/v", "friction": "asperity/friction",
+              "voltage": "circuit/voltage", "charge": "circuit/charge", "current": "asperity/current"}
+    panels = [p for p in ["x", "v", "friction", "voltage", "charge", "current"] if wanted[p] in f]
     fig, axes = plt.subplots(len(panels), 1, figsize=(10, 2.3 * len(panels)), sharex=True)
     for ax, panel in zip(axes, panels):
         if panel == "x":
+            x = f["asperity/x"][:]
             for i, name in enumerate(names):
                 ax.plot(t_us, x[i] * 1e6, lw=1, label=name)
             if "asperity/x0" in f:

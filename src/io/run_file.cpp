@@ -85,11 +85,11 @@ void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
   file.write("/asperity/l", column(elements, [](const StengElement& e) { return e.length_m; }), "m");
 }
 
-void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params) {
+void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params, const OutputTraces& traces) {
   file.write("/circuit/voltage", circuit.voltage_v, "V");
   file.write("/circuit/charge", circuit.charge_c, "C");
-  file.write("/asperity/current", circuit.current_a, "A");
-  file.write("/asperity/charge", circuit.element_charge_c, "C");
+  if (traces.current) file.write("/asperity/current", circuit.current_a, "A");
+  if (traces.charge) file.write("/asperity/charge", circuit.element_charge_c, "C");
   file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
   file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
   file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
@@ -118,25 +118,18 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);
 
-  file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }), "m");
-  file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
-  file.write("/asperity/friction", column(result.trajectories, [](const Trajectory& t) { return t.friction_n; }), "N");
-  if (!result.drives.empty()) {
-    std::vector<std::vector<double>> x0;
-    for (const auto& drive : result.drives) {
-      std::vector<double> row;
-      for (double t : result.times_s) row.push_back(drive->at(t).x_m);
-      x0.push_back(std::move(row));
-    }
-    file.write("/asperity/x0", x0, "m");
-  } else if (study.model == ModelKind::model1) {
-    std::vector<std::vector<double>> x0;
-    for (const Asperity& a : study.asperities) {
+  const OutputTraces& traces = study.traces;
+  if (traces.x) file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }), "m");
+  if (traces.v) file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
+  if (traces.friction)
+    file.write("/asperity/friction", column(result.trajectories, [](const Trajectory& t) { return t.friction_n; }), "N");
+  if (traces.x0 && study.model == ModelKind::model1) {
+    auto imposed = [&](const Asperity& a) {
       std::vector<double> row;
       for (double t : result.times_s) row.push_back(imposed_displacement(study.model1, a, t));
-      x0.push_back(std::move(row));
-    }
-    file.write("/asperity/x0", x0, "m");
+      return row;
+    };
+    file.write("/asperity/x0", column(study.asperities, imposed), "m");
   }
 
   const auto& s = summary.asperities;
@@ -147,7 +140,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.write("/asperity/solver_steps",
              column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }), "1");
 
-  write_circuit(file, result.circuit, study.circuit);
+  write_circuit(file, result.circuit, study.circuit, traces);
   file.attribute("/circuit", "input", study.circuit_input == CircuitInput::actual ? "actual" : "imposed");
   file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);
   file.attribute("/circuit", "voltage_peak_v", summary.voltage_peak_v);

@@ -28,8 +28,10 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance);
 //! /asperity/{sigma,d0,w,l}: the element parameters.
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements);
 
-//! /circuit/{voltage,charge} and /asperity/current, plus the load as attributes.
-void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params);
+//! /circuit/{voltage,charge}, /asperity/current and /asperity/charge (as `traces` asks),
+//! plus the load as attributes.
+void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params,
+                   const OutputTraces& traces = {});
 
 //! Writes a complete run file at `path` (temporary name, renamed when complete).
 void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary);

@@ -143,7 +143,14 @@ Study parse(TomlDocument& document) {
     study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
   }
   study.output_file = default_output_file(study.file);
-  if (auto output = root.table("output")) study.output_file = output->string("file", study.output_file);
+  if (auto output = root.table("output")) {
+    study.output_file = output->string("file", study.output_file);
+    if (output->has("traces")) {
+      const auto names = output->string_list("traces", {"x", "v", "friction", "current", "charge", "x0"});
+      auto wanted = [&](std::string_view name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+      study.traces = {wanted("x"), wanted("v"), wanted("friction"), wanted("current"), wanted("charge"), wanted("x0")};
+    }
+  }
   document.reject_unknown_keys();
 
   check_sample_rate(root, study);

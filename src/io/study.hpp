@@ -26,6 +26,17 @@ enum class CircuitInput {
   imposed,  //!< Model 1's imposed x0(t), as in the paper's Fig. 3c
 };
 
+//! Which n x M traces a run file holds (README: output files); all by default. The
+//! voltage, charge, time and per-asperity parameters are always written.
+struct OutputTraces {
+  bool x = true;         //!< /asperity/x
+  bool v = true;         //!< /asperity/v
+  bool friction = true;  //!< /asperity/friction
+  bool current = true;   //!< /asperity/current
+  bool charge = true;    //!< /asperity/charge
+  bool x0 = true;        //!< /asperity/x0 (Model 1)
+};
+
 struct Study {
   std::string file;           //!< path the study was read from
   std::string text;           //!< the study file, verbatim, recorded in every output
@@ -42,6 +53,7 @@ struct Study {
   CircuitInput circuit_input = CircuitInput::actual;
   DomainPolicy domain_policy = DomainPolicy::error;
   std::string output_file;    //!< where `run` writes, unless the command line says otherwise
+  OutputTraces traces;        //!< which traces it writes
 
   //! The output grid.
   [[nodiscard]] TimeGrid grid() const { return TimeGrid::covering(duration_s, sample_rate_hz); }

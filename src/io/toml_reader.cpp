@@ -1,5 +1,6 @@
 #include "io/toml_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -186,6 +187,22 @@ std::string TomlTable::choice(std::string_view key, std::string_view fallback,
   for (auto a : allowed)
     if (value == a) return value;
   fail(key, "= \"" + value + "\" is not one of " + join(allowed));
+}
+
+std::vector<std::string> TomlTable::string_list(std::string_view key, const std::vector<std::string_view>& allowed) {
+  std::vector<std::string> out;
+  const toml::node* node = lookup(key);
+  if (!node) return out;
+  const auto* array = node->as_array();
+  if (!array) fail(key, "is " + describe(*node) + "; expected an array of strings, each one of " + join(allowed));
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const auto* text = (*array)[i].as_string();
+    if (!text) fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a string");
+    if (std::find(allowed.begin(), allowed.end(), text->get()) == allowed.end())
+      fail(key, "[" + std::to_string(i) + "] = \"" + text->get() + "\" is not one of " + join(allowed));
+    out.push_back(text->get());
+  }
+  return out;
 }
 
 std::optional<TomlTable> TomlTable::table(std::string_view key) {

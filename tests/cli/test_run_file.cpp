@@ -114,5 +114,18 @@ TEST(RunFile, CircuitCommandReadsARunFileAndReproducesItsCircuitWithTheSpline) {
   EXPECT_LT(std::sqrt(num / den), 1e-4);
 }
 
+TEST(RunFile, OutputTracesSelectWhichArraysAreWritten) {
+  ScratchDir scratch("traces");
+  const std::string study = scratch.write("study.toml", study_text() + "[output]\ntraces = [\"x\", \"charge\"]\n");
+  const auto r = run_cli("run " + study + " --out " + scratch.file("run.h5"), scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Hdf5Reader file(scratch.file("run.h5"));
+  EXPECT_TRUE(file.has("/asperity/x"));
+  EXPECT_TRUE(file.has("/asperity/charge"));
+  for (const char* omitted : {"/asperity/v", "/asperity/friction", "/asperity/current"}) EXPECT_FALSE(file.has(omitted)) << omitted;
+  for (const char* always : {"/time", "/circuit/voltage", "/circuit/charge", "/asperity/k", "/asperity/l"})
+    EXPECT_TRUE(file.has(always)) << always;
+}
+
 }  // namespace
 }  // namespace stengmc

@@ -141,6 +141,11 @@ TEST(Study, RejectsDurationThatIsNotAWholeNumberOfSamples) {
   EXPECT_NE(error_of(text).find("is not a whole number of sample intervals"), std::string::npos) << error_of(text);
 }
 
+TEST(Study, RejectsUnknownOutputTrace) {
+  const std::string text = MINIMAL + "[output]\ntraces = [\"x\", \"velocity\"]\n";
+  EXPECT_NE(error_of(text).find("[output] traces [1] = \"velocity\" is not one of"), std::string::npos) << error_of(text);
+}
+
 TEST(Study, RejectsMissingModelKind) {
   std::string text = MINIMAL;
   text.replace(text.find("kind = \"model2\""), 15, "");
