@@ -1,0 +1,39 @@
+#pragma once
+//! Spectral lines found in an amplitude spectrum (MODEL.md §3: a local maximum whose
+//! prominence exceeds a threshold set relative to a robust noise-floor estimate).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "spectral/amplitude_spectrum.hpp"
+
+namespace stengmc {
+
+struct PeakOptions {
+  double prominence_over_floor = 10.0;  //!< a peak's prominence must exceed this x the noise floor
+  double min_separation_hz = 0.0;       //!< of two peaks closer than this, the weaker is dropped
+  double min_frequency_hz = 0.0;        //!< ignore peaks below (DC, drift)
+  std::size_t max_peaks = 64;           //!< keep at most this many, strongest first
+  //! drop a peak not above this x the summed side-lobe leakage the stronger kept peaks' lines
+  //! put at its frequency (window response incl. negative-frequency images); 0 disables.
+  //! Without it a noise-free or zero-padded spectrum reports side lobes as lines.
+  double leakage_margin = 2.0;
+};
+
+struct Peak {
+  double frequency_hz = 0.0;  //!< refined frequency [Hz]
+  double amplitude = 0.0;     //!< refined amplitude, signal unit
+  double prominence = 0.0;    //!< height above the higher of the two flanking minima, signal unit
+  std::size_t bin = 0;        //!< index of the local maximum in the spectrum
+};
+
+//! Robust noise floor: the rms amplitude a white-noise spectrum would have, estimated from
+//! the median of A_k (Rayleigh: rms = median / sqrt(ln 2)), so lines do not raise it.
+double noise_floor(const AmplitudeSpectrum& spectrum);
+
+//! Peaks of `spectrum`, sorted by frequency, with frequency and amplitude refined on the
+//! windowed DTFT of `signal` (the samples the spectrum was computed from).
+std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAnalyzer& analyzer,
+                             std::span<const double> signal, double sample_rate_hz, const PeakOptions& options);
+
+}  // namespace stengmc
