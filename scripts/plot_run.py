@@ -29,7 +29,7 @@ def attribute(node, name, default=""):
 def open_checked(path):
     f = h5py.File(path, "r")
     kind = attribute(f, "file_type")
-    if kind not in ("stengmc-run", "stengmc-circuit"):
+    if kind not in ("stengmc-run", "stengmc-circuit", "stengmc-spectrum"):
         sys.exit(f"{path}: not a stengmc output file (file_type = {kind!r})")
     if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
         sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
@@ -44,6 +44,9 @@ def labels(f):
 
 def plot_run(path):
     f = open_checked(path)
+    if "time" not in f:  # a `stengmc spectrum` output: spectra only
+        plot_spectra(path)
+        return
     t_us = f["time"][:] * 1e6
     names = labels(f)
     circuit_samples = f["circuit/voltage"].shape[0]
@@ -106,6 +109,77 @@ def plot_run(path):
     print(f"figure: {out}")
 
 
+def plot_spectra(path):
+    """Voltage spectrum with peaks, ESPRIT lines and expected lines (paper Fig. 6e/f),
+    element-current spectra (Fig. 7a/b) and the spectrogram (Fig. 8), when present."""
+    f = open_checked(path)
+    if "spectrum/voltage" not in f:
+        return
+    freq_mhz = f["spectrum/frequency"][:] * 1e-6
+    has_currents = "spectrum/current" in f
+    has_spectrogram = "spectrogram/voltage" in f
+    rows = 1 + has_currents + has_spectrogram
+    fig, axes = plt.subplots(rows, 1, figsize=(10, 3.2 * rows))
+    axes = np.atleast_1d(axes)
+    ax = axes[0]
+    ax.semilogy(freq_mhz, f["spectrum/voltage"][:], lw=0.8, color="k", label="|V| (FFT)")
+    floor = f["spectrum"].attrs.get("noise_floor_v", 0.0)
+    if floor > 0:
+        ax.axhline(floor, color="grey", lw=0.8, ls=":", label="noise floor")
+    if "spectrum/peaks/frequency" in f and f["spectrum/peaks/frequency"].shape[0]:
+        ax.plot(f["spectrum/peaks/frequency"][:] * 1e-6, f["spectrum/peaks/amplitude"][:], "rv", ms=6, label="FFT peaks")
+    if "spectrum/lines/frequency" in f and f["spectrum/lines/frequency"].shape[0]:
+        ax.plot(f["spectrum/lines/frequency"][:] * 1e-6, f["spectrum/lines/amplitude"][:], "b^", ms=6, mfc="none",
+                label="ESPRIT lines")
+    if "asperity/natural_frequency" in f:
+        for i, fn in enumerate(f["asperity/natural_frequency"][:]):
+            ax.axvline(fn * 1e-6, color=f"C{i}", lw=0.8, ls="--")
+    ax.set_xlim(0, min(freq_mhz[-1], 4.0 * max(1e-9, freq_mhz[np.argmax(f["spectrum/voltage"][1:]) + 1])))
+    ax.set_ylabel("amplitude [V]")
+    id_group = "spectrum/identifiability/fft"
+    title = "voltage spectrum"
+    if id_group in f:
+        g = f[id_group]
+        title += f"  (FFT: {int(g.attrs['n_identifiable'])}/{int(g.attrs['n_sliding'])} identifiable"
+        hr = "spectrum/identifiability/high_resolution"
+        if hr in f:
+            title += f", ESPRIT: {int(f[hr].attrs['n_identifiable'])}/{int(f[hr].attrs['n_sliding'])}"
+        title += "; dashed: expected lines)"
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7)
+    row = 1
+    if has_currents:
+        ax = axes[row]
+        row += 1
+        names = labels(f)
+        for i, spectrum in enumerate(f["spectrum/current"][:]):
+            ax.semilogy(freq_mhz, spectrum, lw=0.8, color=f"C{i}", label=names[i] if i < len(names) else None)
+        ax.set_xlim(axes[0].get_xlim())
+        ax.set_ylabel("amplitude [A]")
+        ax.set_title("element-current spectra", fontsize=9)
+        ax.legend(fontsize=7, ncol=4)
+    for a in axes[: row]:
+        a.set_xlabel("f [MHz]")
+    if has_spectrogram:
+        ax = axes[row]
+        s = f["spectrogram/voltage"][:]
+        t_us = f["spectrogram/time"][:] * 1e6
+        fs_mhz = f["spectrogram/frequency"][:] * 1e-6
+        db = 20 * np.log10(np.maximum(s, s.max() * 1e-5)).T
+        mesh = ax.pcolormesh(t_us, fs_mhz, db, shading="nearest", cmap="magma")
+        fig.colorbar(mesh, ax=ax, label="dB V")
+        ax.set_ylim(0, axes[0].get_xlim()[1])
+        ax.set_xlabel("t [us]")
+        ax.set_ylabel("f [MHz]")
+        ax.set_title("spectrogram of V", fontsize=9)
+    fig.suptitle("\n".join(textwrap.wrap(attribute(f, "title") or path, 110)), fontsize=9)
+    fig.tight_layout()
+    out = path.rsplit(".", 1)[0] + "_spectrum.png"
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    print(f"figure: {out}")
+
+
 def plot_compare(paths, out):
     fig, ax = plt.subplots(figsize=(10, 4))
     for path in paths:
@@ -134,6 +208,8 @@ def main():
     else:
         for path in args.files:
             plot_run(path)
+            if "spectrum/voltage" in h5py.File(path, "r") and "time" in h5py.File(path, "r"):
+                plot_spectra(path)
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include "io/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
+#include "pipeline/spectral_summary.hpp"
 
 namespace stengmc::app {
 
@@ -28,6 +29,7 @@ void run(const RunOptions& options) {
   const RunSummary summary = summarise(study, result);
   write_run_file(out, study, result, summary);
   std::printf("%s", format_summary(study, result, summary).c_str());
+  if (result.spectra) std::printf("%s", format_spectral_summary(*result.spectra).c_str());
   for (const std::string& note : result.notes) std::printf("NOTE: %s\n", note.c_str());
   std::printf("wrote %s\n", out.c_str());
   if (options.figures && render_figures(out) != 0)

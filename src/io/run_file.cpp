@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "core/build_info.hpp"
+#include "io/spectrum_file.hpp"
 
 namespace stengmc {
 
@@ -146,6 +147,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.attribute("/circuit", "voltage_peak_v", summary.voltage_peak_v);
   file.attribute("/circuit", "final_charge_c", summary.final_charge_c);
   write_events(file, result);
+  if (result.spectra) write_spectra(file, *result.spectra, *study.spectrum);
   file.commit();
 }
 

@@ -142,6 +142,7 @@ Study parse(TomlDocument& document) {
     const std::string policy = domain->choice("policy", "error", {"error", "flag"});
     study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
   }
+  if (auto spectrum = root.table("spectrum")) study.spectrum = read_spectrum_settings(*spectrum);
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);

@@ -4,7 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "circuit/circuit_solver.hpp"
+#include "spectral/spectrum_settings.hpp"
 #include "surface/asperity.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
@@ -54,6 +57,7 @@ struct Study {
   DomainPolicy domain_policy = DomainPolicy::error;
   std::string output_file;    //!< where `run` writes, unless the command line says otherwise
   OutputTraces traces;        //!< which traces it writes
+  std::optional<SpectrumSettings> spectrum;  //!< spectral analysis, when the study has [spectrum]
 
   //! The output grid.
   [[nodiscard]] TimeGrid grid() const { return TimeGrid::covering(duration_s, sample_rate_hz); }

@@ -77,9 +77,13 @@ void TomlDocument::collect_unknown(const toml::table& table, const std::string& 
   }
 }
 
-void TomlDocument::reject_unknown_keys() const {
+void TomlDocument::reject_unknown_keys(std::string_view prefix) const {
+  std::vector<std::string> all;
+  collect_unknown(table_, "", all);
   std::vector<std::string> unknown;
-  collect_unknown(table_, "", unknown);
+  const std::string marker = "unknown key '" + std::string(prefix) + (prefix.empty() ? "" : ".");
+  for (auto& line : all)
+    if (line.find(marker) != std::string::npos) unknown.push_back(std::move(line));
   if (unknown.empty()) return;
   std::string message;
   for (const auto& line : unknown) message += (message.empty() ? "" : "\n") + line;

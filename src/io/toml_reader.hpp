@@ -71,8 +71,9 @@ class TomlDocument {
 
   //! The root table.
   TomlTable root();
-  //! Throws InputError listing every key that no reader asked for, with its line.
-  void reject_unknown_keys() const;
+  //! Throws InputError listing every key that no reader asked for, with its line; with a
+  //! `prefix` ("spectrum"), only keys in that table (when a command reads one table of a study).
+  void reject_unknown_keys(std::string_view prefix = "") const;
 
   [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] const std::string& text() const { return text_; }

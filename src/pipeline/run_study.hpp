@@ -1,11 +1,13 @@
 #pragma once
 //! One realisation: study -> tribology of every asperity -> domain check -> circuit.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
 #include "io/study.hpp"
+#include "pipeline/analyse_spectra.hpp"
 #include "tribology/events.hpp"
 #include "tribology/trajectory.hpp"
 
@@ -22,6 +24,8 @@ struct RunResult {
   std::vector<std::string> notes;                    //!< plain-language warnings for the user
   double tribology_seconds = 0.0;                    //!< wall time of the tribology [s]
   double circuit_seconds = 0.0;                      //!< wall time of the circuit [s]
+  std::optional<SpectralResult> spectra;             //!< when the study has [spectrum]
+  double spectrum_seconds = 0.0;                     //!< wall time of the spectral analysis [s]
 };
 
 //! Runs the study. Throws ModelError when x reaches l under policy `error`.

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/constants.hpp"
+#include "pipeline/slip_fraction.hpp"
 
 namespace stengmc {
 
@@ -27,14 +28,7 @@ RunSummary summarise(const Study& study, const RunResult& result) {
     AsperitySummary s;
     const double damping = study.model == ModelKind::model2 ? study.model2.damping_n_s_per_m : 0.0;
     s.natural_frequency_hz = damped_natural_frequency_hz(a.stiffness_n_per_m, a.mass_kg, damping);
-    std::size_t sliding = 0;
-    for (double v : t.v_m_per_s) {
-      const bool slides = study.model == ModelKind::model1
-          ? v != 0.0
-          : std::abs(study.model2.belt_velocity_m_per_s - v) > 1.0 / study.model2.atan_sharpness_s_per_m;
-      sliding += slides ? 1 : 0;
-    }
-    s.slip_fraction = t.v_m_per_s.empty() ? 0.0 : static_cast<double>(sliding) / static_cast<double>(t.v_m_per_s.size());
+    s.slip_fraction = slip_fraction(study, t.v_m_per_s);
     const double max_x = t.x_m.empty() ? 0.0 : *std::max_element(t.x_m.begin(), t.x_m.end());
     s.max_x_over_l = max_x / a.element.length_m;
     s.rms_velocity_m_per_s = rms(t.v_m_per_s, t.v_m_per_s.size());
@@ -64,8 +58,8 @@ std::string format_summary(const Study& study, const RunResult& result, const Ru
                 summary.voltage_peak_v, summary.final_charge_c,
                 result.valid ? "" : "  (circuit cut at the first x = l: run INVALID)");
   out += line;
-  std::snprintf(line, sizeof line, "time: tribology %.3f s, circuit %.3f s; %zu events\n", result.tribology_seconds,
-                result.circuit_seconds, result.events.size());
+  std::snprintf(line, sizeof line, "time: tribology %.3f s, circuit %.3f s, spectra %.3f s; %zu events\n",
+                result.tribology_seconds, result.circuit_seconds, result.spectrum_seconds, result.events.size());
   out += line;
   return out;
 }

@@ -1,0 +1,86 @@
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_file.hpp"
+#include "io/signal_input.hpp"
+#include "io/spectrum_file.hpp"
+#include "io/toml_reader.hpp"
+#include "pipeline/analyse_spectra.hpp"
+#include "pipeline/spectral_summary.hpp"
+
+namespace stengmc::app {
+
+namespace {
+
+struct SpectrumOptions {
+  std::string input;
+  std::string out;
+  std::string settings_file;
+  bool figures = false;
+};
+
+//! The [spectrum] table of a study file, or the defaults.
+SpectrumSettings settings_from(const std::string& file) {
+  if (file.empty()) return {};
+  auto document = TomlDocument::from_file(file);
+  TomlTable root = document->root();
+  auto table = root.table("spectrum");
+  if (!table) root.fail("spectrum", "is missing: --settings needs a file with a [spectrum] table");
+  SpectrumSettings settings = read_spectrum_settings(*table);
+  // Only [spectrum] is this command's business; the rest of a study file is not checked.
+  document->reject_unknown_keys("spectrum");
+  return settings;
+}
+
+void run(const SpectrumOptions& options) {
+  std::error_code ignored;
+  if (std::filesystem::equivalent(options.input, options.out, ignored))
+    throw InputError("--out " + options.out + " is the input file; choose another output name");
+  const SpectrumSettings settings = settings_from(options.settings_file);
+  const bool csv = std::filesystem::path(options.input).extension() == ".csv";
+  const SignalInput signal = csv ? read_signal_csv(options.input) : read_signal_hdf5(options.input);
+  SpectralInput input;
+  input.times_s = signal.times_s;
+  input.voltage_v = signal.voltage_v;
+  if (!signal.currents_a.empty()) input.currents_a = &signal.currents_a;
+  input.expected_frequency_hz = signal.expected_frequency_hz;
+  for (double fraction : signal.slip_fraction) input.sliding.push_back(fraction >= settings.min_slip_fraction);
+  SpectralResult result;
+  try {
+    result = analyse_spectra(input, settings);
+  } catch (const InputError& e) {
+    throw InputError(options.input + ": " + e.what());
+  }
+  Hdf5Writer file(options.out);
+  write_provenance(file, {"stengmc-spectrum", options.input, "", 0});
+  file.attribute("/", "settings_file", options.settings_file);
+  write_spectra(file, result, settings);
+  file.commit();
+  std::printf("stengmc spectrum %s\n%s", options.input.c_str(), format_spectral_summary(result).c_str());
+  if (signal.expected_frequency_hz.empty())
+    std::printf("(no /asperity/natural_frequency in the input: identifiability not assessed)\n");
+  std::printf("wrote %s\n", options.out.c_str());
+  if (options.figures && render_figures(options.out) != 0) throw Error("figure rendering failed; the HDF5 output is complete");
+}
+
+}  // namespace
+
+void add_spectrum_command(CLI::App& app) {
+  auto options = std::make_shared<SpectrumOptions>();
+  CLI::App* command = app.add_subcommand(
+      "spectrum", "Spectra, peaks, ESPRIT lines, identifiability and spectrogram of an existing output file or a CSV `t,V`");
+  command->add_option("input", options->input, "A stengmc output file (uses /time, /circuit/voltage, ...) or IN.csv")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--out", options->out, "Output HDF5 file (/spectrum, /spectrogram)")->required();
+  command->add_option("-s,--settings", options->settings_file, "A study or TOML file whose [spectrum] table to use (default: the defaults)")
+      ->check(CLI::ExistingFile);
+  command->add_flag("-f,--figures", options->figures, "Also render PNG figures");
+  command->callback([options] { run(*options); });
+}
+
+}  // namespace stengmc::app

@@ -1,0 +1,73 @@
+#include "io/spectrum_file.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace stengmc {
+
+namespace {
+
+template <class Items, class Field>
+std::vector<double> column(const Items& items, Field field) {
+  std::vector<double> out;
+  for (const auto& item : items) out.push_back(field(item));
+  return out;
+}
+
+void write_identifiability(Hdf5Writer& file, const std::string& group, const Identifiability& id) {
+  std::vector<std::int64_t> identified, matched;
+  for (bool b : id.identified) identified.push_back(b ? 1 : 0);
+  for (int m : id.matched_line) matched.push_back(m);
+  file.write(group + "/identified", identified, "1");
+  file.write(group + "/matched_line", matched, "index");
+  file.write(group + "/frequency_error", id.frequency_error_hz, "Hz");
+  file.write(group + "/amplitude", id.amplitude, "V");
+  file.attribute(group, "n_sliding", static_cast<std::int64_t>(id.n_sliding));
+  file.attribute(group, "n_detected", static_cast<std::int64_t>(id.n_detected));
+  file.attribute(group, "n_identifiable", static_cast<std::int64_t>(id.n_identifiable));
+  file.attribute(group, "ratio", id.ratio);
+}
+
+}  // namespace
+
+void write_spectra(Hdf5Writer& file, const SpectralResult& result, const SpectrumSettings& settings) {
+  file.write("/spectrum/frequency", result.voltage.frequency_hz, "Hz");
+  file.write("/spectrum/voltage", result.voltage.amplitude, "V");
+  if (!result.current_amplitude.empty()) file.write("/spectrum/current", result.current_amplitude, "A");
+  file.attribute("/spectrum", "window", window_name(settings.window));
+  file.attribute("/spectrum", "start_s", settings.start_s);
+  file.attribute("/spectrum", "end_s", settings.end_s);
+  file.attribute("/spectrum", "first_sample", static_cast<std::int64_t>(result.first_sample));
+  file.attribute("/spectrum", "samples", static_cast<std::int64_t>(result.samples));
+  file.attribute("/spectrum", "zero_pad_factor", static_cast<std::int64_t>(settings.zero_pad_factor));
+  file.attribute("/spectrum", "resolution_hz", result.voltage.resolution_hz);
+  file.attribute("/spectrum", "noise_floor_v", result.noise_floor_v);
+  file.attribute("/spectrum", "prominence_over_floor", settings.peaks.prominence_over_floor);
+  file.attribute("/spectrum", "identification_tolerance", settings.identifiability.relative_tolerance);
+  file.attribute("/spectrum", "dynamic_range_db", settings.dynamic_range_db);
+
+  file.write("/spectrum/peaks/frequency", column(result.peaks, [](const Peak& p) { return p.frequency_hz; }), "Hz");
+  file.write("/spectrum/peaks/amplitude", column(result.peaks, [](const Peak& p) { return p.amplitude; }), "V");
+  file.write("/spectrum/peaks/prominence", column(result.peaks, [](const Peak& p) { return p.prominence; }), "V");
+  write_identifiability(file, "/spectrum/identifiability/fft", result.fft);
+
+  if (result.high_resolution) {
+    file.write("/spectrum/lines/frequency", column(result.lines, [](const Line& l) { return l.frequency_hz; }), "Hz");
+    file.write("/spectrum/lines/amplitude", column(result.lines, [](const Line& l) { return l.amplitude; }), "V");
+    file.write("/spectrum/lines/damping", column(result.lines, [](const Line& l) { return l.damping_per_s; }), "1/s");
+    file.write("/spectrum/lines/phase", column(result.lines, [](const Line& l) { return l.phase_rad; }), "rad");
+    file.attribute("/spectrum/lines", "order_criterion", order_criterion_name(settings.esprit.criterion));
+    write_identifiability(file, "/spectrum/identifiability/high_resolution", *result.high_resolution);
+  }
+  if (result.spectrogram) {
+    const Spectrogram& s = *result.spectrogram;
+    file.write("/spectrogram/time", s.time_s, "s");
+    file.write("/spectrogram/frequency", s.frequency_hz, "Hz");
+    file.write("/spectrogram/voltage", s.amplitude, "V");
+    file.attribute("/spectrogram", "window", window_name(settings.spectrogram->window));
+    file.attribute("/spectrogram", "window_samples", static_cast<std::int64_t>(settings.spectrogram->window_samples));
+    file.attribute("/spectrogram", "hop_samples", static_cast<std::int64_t>(settings.spectrogram->hop_samples));
+  }
+}
+
+}  // namespace stengmc

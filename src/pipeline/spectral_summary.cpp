@@ -1,0 +1,53 @@
+#include "pipeline/spectral_summary.hpp"
+
+#include <cstdio>
+
+namespace stengmc {
+
+namespace {
+
+//! "+0.0123 %" when identified, else why not.
+std::string verdict(const Identifiability& id, std::size_t i, double expected_hz) {
+  if (id.identified.at(i)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%+.4f %%", 100.0 * id.frequency_error_hz[i] / expected_hz);
+    return text;
+  }
+  return id.matched_line.at(i) < 0 ? "not found" : "ambiguous";
+}
+
+}  // namespace
+
+std::string format_spectral_summary(const SpectralResult& result) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "spectrum: %zu samples from t = %.4g s, resolution %.4g Hz, noise floor %.3g V, %zu FFT peaks",
+                result.samples, static_cast<double>(result.first_sample) / result.sample_rate_hz,
+                result.voltage.resolution_hz, result.noise_floor_v, result.peaks.size());
+  out += line;
+  if (result.high_resolution) out += ", " + std::to_string(result.lines.size()) + " ESPRIT lines";
+  out += "\n";
+  std::snprintf(line, sizeof line, "%-4s %12s %8s %18s %18s\n", "#", "f_i [MHz]", "slides", "FFT line error",
+                "ESPRIT line error");
+  out += line;
+  for (std::size_t i = 0; i < result.expected_frequency_hz.size(); ++i) {
+    const double f = result.expected_frequency_hz[i];
+    const bool slides = result.sliding.at(i);
+    std::snprintf(line, sizeof line, "%-4zu %12.5f %8s %18s %18s\n", i + 1, f * 1e-6, slides ? "yes" : "no",
+                  slides ? verdict(result.fft, i, f).c_str() : "",
+                  slides && result.high_resolution ? verdict(*result.high_resolution, i, f).c_str() : "");
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "identifiable: FFT %zu of %zu sliding (ratio %.3f)", result.fft.n_identifiable,
+                result.fft.n_sliding, result.fft.ratio);
+  out += line;
+  if (result.high_resolution) {
+    std::snprintf(line, sizeof line, "; ESPRIT %zu of %zu (ratio %.3f)", result.high_resolution->n_identifiable,
+                  result.high_resolution->n_sliding, result.high_resolution->ratio);
+    out += line;
+  }
+  return out + "\n";
+}
+
+}  // namespace stengmc
