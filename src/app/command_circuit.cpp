@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/output_guard.hpp"
 #include "app/validators.hpp"
 #include "circuit/circuit_solver.hpp"
 #include "core/error.hpp"
@@ -50,9 +51,7 @@ std::vector<std::unique_ptr<Motion>> interpolate(const DisplacementInput& input,
 }
 
 void run(const CircuitOptions& options) {
-  std::error_code ignored;
-  if (std::filesystem::equivalent(options.input, options.out, ignored))
-    throw InputError("--out " + options.out + " is the input file; choose another output name");
+  refuse_overwriting_input(options.input, options.out);
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
   const DisplacementInput input = csv ? read_displacement_csv(options.input, options.csv_element)
                                       : read_displacement_hdf5(options.input);

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/output_guard.hpp"
 #include "core/error.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_file.hpp"
@@ -37,9 +38,7 @@ SpectrumSettings settings_from(const std::string& file) {
 }
 
 void run(const SpectrumOptions& options) {
-  std::error_code ignored;
-  if (std::filesystem::equivalent(options.input, options.out, ignored))
-    throw InputError("--out " + options.out + " is the input file; choose another output name");
+  refuse_overwriting_input(options.input, options.out);
   const SpectrumSettings settings = settings_from(options.settings_file);
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
   const SignalInput signal = csv ? read_signal_csv(options.input) : read_signal_hdf5(options.input);

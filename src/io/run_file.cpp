@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "core/build_info.hpp"
+#include "core/column.hpp"
 #include "io/spectrum_file.hpp"
 
 namespace stengmc {
@@ -17,13 +18,6 @@ std::string utc_now() {
   return text;
 }
 
-//! One column of a per-asperity table: `field` applied to every item.
-template <class Range, class Field>
-auto column(const Range& items, Field field) {
-  std::vector<std::decay_t<decltype(field(*std::begin(items)))>> out;
-  for (const auto& item : items) out.push_back(field(item));
-  return out;
-}
 
 void write_model(Hdf5Writer& file, const Study& study) {
   file.group("/model");

@@ -1,5 +1,7 @@
 #include "io/spectrum_file.hpp"
 
+#include "core/column.hpp"
+
 #include <cstdint>
 #include <string>
 
@@ -7,12 +9,6 @@ namespace stengmc {
 
 namespace {
 
-template <class Items, class Field>
-std::vector<double> column(const Items& items, Field field) {
-  std::vector<double> out;
-  for (const auto& item : items) out.push_back(field(item));
-  return out;
-}
 
 void write_identifiability(Hdf5Writer& file, const std::string& group, const Identifiability& id) {
   std::vector<std::int64_t> identified, matched;

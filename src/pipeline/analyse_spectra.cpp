@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/column.hpp"
 #include "core/error.hpp"
 
 namespace stengmc {
@@ -24,19 +25,6 @@ double uniform_rate(std::span<const double> t) {
   return 1.0 / step;
 }
 
-template <class Values>
-std::vector<double> frequencies(const Values& items) {
-  std::vector<double> out;
-  for (const auto& item : items) out.push_back(item.frequency_hz);
-  return out;
-}
-
-template <class Values>
-std::vector<double> amplitudes(const Values& items) {
-  std::vector<double> out;
-  for (const auto& item : items) out.push_back(item.amplitude);
-  return out;
-}
 
 //! Drops items weaker than the strongest by more than `dynamic_range_db`.
 template <class Items>
@@ -76,15 +64,15 @@ SpectralResult analyse_spectra(const SpectralInput& input, const SpectrumSetting
     for (const auto& current : *input.currents_a)
       result.current_amplitude.push_back(analyzer.analyse(segment(current), result.sample_rate_hz).amplitude);
 
-  const auto peak_frequencies = frequencies(result.peaks);
-  const auto peak_amplitudes = amplitudes(result.peaks);
+  const auto peak_frequencies = column(result.peaks, [](const Peak& p) { return p.frequency_hz; });
+  const auto peak_amplitudes = column(result.peaks, [](const Peak& p) { return p.amplitude; });
   result.fft = assess_identifiability(input.expected_frequency_hz, input.sliding, peak_frequencies, peak_amplitudes,
                                       settings.identifiability);
   if (settings.high_resolution) {
     result.lines = estimate_lines(voltage, result.sample_rate_hz, settings.esprit);
     keep_within_dynamic_range(result.lines, settings.dynamic_range_db);
-    const auto line_frequencies = frequencies(result.lines);
-    const auto line_amplitudes = amplitudes(result.lines);
+    const auto line_frequencies = column(result.lines, [](const Line& l) { return l.frequency_hz; });
+    const auto line_amplitudes = column(result.lines, [](const Line& l) { return l.amplitude; });
     result.high_resolution = assess_identifiability(input.expected_frequency_hz, input.sliding, line_frequencies,
                                                     line_amplitudes, settings.identifiability);
   }
