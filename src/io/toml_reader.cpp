@@ -193,6 +193,28 @@ std::string TomlTable::choice(std::string_view key, std::string_view fallback,
   fail(key, "= \"" + value + "\" is not one of " + join(allowed));
 }
 
+std::vector<double> TomlTable::number_list(std::string_view key) {
+  std::vector<double> out;
+  const toml::node* node = lookup(key);
+  if (!node) return out;
+  const auto* array = node->as_array();
+  if (!array) fail(key, "is " + describe(*node) + "; expected an array of numbers");
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::node& item = (*array)[i];
+    double value = 0.0;
+    if (const auto* integer = item.as_integer()) {
+      value = static_cast<double>(integer->get());
+    } else if (const auto* floating = item.as_floating_point()) {
+      value = floating->get();
+    } else {
+      fail(key, "[" + std::to_string(i) + "] is " + describe(item) + "; expected a number");
+    }
+    if (!std::isfinite(value)) fail(key, "[" + std::to_string(i) + "] is not a finite number");
+    out.push_back(value);
+  }
+  return out;
+}
+
 std::vector<std::string> TomlTable::string_list(std::string_view key, const std::vector<std::string_view>& allowed) {
   std::vector<std::string> out;
   const toml::node* node = lookup(key);

@@ -34,6 +34,8 @@ class TomlTable {
   bool boolean(std::string_view key, bool fallback);
   //! A string that must be one of `allowed`; `fallback` when absent.
   std::string choice(std::string_view key, std::string_view fallback, const std::vector<std::string_view>& allowed);
+  //! An array of finite numbers (integers or floats), empty when absent.
+  std::vector<double> number_list(std::string_view key);
   //! An array of strings, each one of `allowed` (empty when absent).
   std::vector<std::string> string_list(std::string_view key, const std::vector<std::string_view>& allowed);
   //! A free string; `fallback` when absent.

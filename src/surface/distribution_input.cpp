@@ -1,0 +1,129 @@
+// Reading distributions from surface files: the TOML table and empirical histograms.
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/toml_reader.hpp"
+#include "surface/distribution.hpp"
+
+namespace stengmc {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream out;
+  out.precision(10);
+  out << v;
+  return out.str();
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- input
+
+namespace {
+
+double required_positive(TomlTable& t, std::string_view key) {
+  const double v = t.required_number(key);
+  if (!(v > 0.0)) t.fail(key, "= " + fmt(v) + " must be > 0");
+  return v;
+}
+
+//! `values = [...]` of a fixed distribution: at least one number.
+std::vector<double> read_values(TomlTable& t, std::string_view key) {
+  if (!t.has(key)) t.fail(key, "is missing; the fixed distribution needs an array of numbers");
+  std::vector<double> values = t.number_list(key);
+  if (values.empty()) t.fail(key, "is empty; the fixed distribution needs at least one number");
+  return values;
+}
+
+bool parse_double(std::string_view text, double& out) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  // from_chars: locale-independent, unlike strtod.
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return ec == std::errc() && end == text.data() + text.size() && !text.empty() && std::isfinite(out);
+}
+
+}  // namespace
+
+std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot open the histogram file for reading");
+  std::vector<Bin> bins;
+  std::string line;
+  bool first_content = true;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string where = file.string() + ":" + std::to_string(number) + ": ";
+    const auto start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos || line[start] == '#') continue;
+    std::string_view rest(line);
+    std::vector<std::string_view> fields;
+    for (std::size_t comma; (comma = rest.find(',')) != std::string_view::npos; rest.remove_prefix(comma + 1))
+      fields.push_back(rest.substr(0, comma));
+    fields.push_back(rest);
+    Bin b{};
+    const bool numeric = fields.size() == 3 && parse_double(fields[0], b.lower) && parse_double(fields[1], b.upper) &&
+                         parse_double(fields[2], b.weight);
+    const bool header = first_content && line.find("lower") != std::string::npos;
+    first_content = false;
+    if (header) continue;
+    if (!numeric) throw InputError(where + "expected three numbers 'lower,upper,weight', got '" + line + "'");
+    if (!(b.upper > b.lower)) throw InputError(where + "upper = " + fmt(b.upper) + " must be > lower = " + fmt(b.lower));
+    if (b.weight < 0.0) throw InputError(where + "weight = " + fmt(b.weight) + " must be >= 0");
+    if (!bins.empty() && b.lower < bins.back().upper)
+      throw InputError(where + "lower = " + fmt(b.lower) + " overlaps the previous bin, which ends at " +
+                       fmt(bins.back().upper) + " (bins must be increasing)");
+    bins.push_back(b);
+  }
+  if (bins.empty()) throw InputError(file.string() + ": the histogram has no bins");
+  double total = 0.0;
+  for (const Bin& b : bins) total += b.weight;
+  if (!(total > 0.0)) throw InputError(file.string() + ": the histogram's weights sum to zero");
+  return bins;
+}
+
+Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& base_dir) {
+  if (!t.has("kind")) t.fail("kind", "is missing; expected one of normal, lognormal, uniform, gamma, weibull, fixed, empirical");
+  const std::string kind =
+      t.choice("kind", "", {"normal", "lognormal", "uniform", "gamma", "weibull", "fixed", "empirical"});
+  if (kind == "uniform") {
+    const double lo = t.required_number("min"), hi = t.required_number("max");
+    if (!(hi > lo)) t.fail("max", "= " + fmt(hi) + " must be > min = " + fmt(lo));
+    return uniform(lo, hi);
+  }
+  if (kind == "fixed") return fixed(read_values(t, "values"));
+  if (kind == "empirical") {
+    const std::string name = t.string("file", "");
+    if (name.empty()) t.fail("file", "is missing; the empirical distribution needs a histogram file");
+    const std::filesystem::path path = base_dir / name;  // an absolute name replaces base_dir
+    try {
+      return empirical(read_histogram(path));
+    } catch (const InputError& e) {
+      t.fail("file", "= \"" + name + "\": " + e.what());
+    }
+  }
+  // The continuous families: two parameters and an optional truncation.
+  const bool normal_kind = kind == "normal";
+  const double first = normal_kind ? t.required_number("mean")
+                                   : required_positive(t, kind == "lognormal" ? "median" : "shape");
+  const double second = required_positive(t, normal_kind ? "std" : kind == "lognormal" ? "sigma_log" : "scale");
+  const double lo = t.number("min", normal_kind ? -INFINITY : 0.0);
+  const double hi = t.number("max", INFINITY);
+  if (!(hi > lo)) t.fail("max", "= " + fmt(hi) + " must be > min = " + fmt(lo));
+  try {
+    if (normal_kind) return normal(first, second, lo, hi);
+    if (kind == "lognormal") return lognormal(first, second, lo, hi);
+    if (kind == "gamma") return gamma(first, second, lo, hi);
+    return weibull(first, second, lo, hi);
+  } catch (const InputError& e) {  // only the truncation can still be wrong here
+    const char* key = t.has("max") ? "max" : "min";
+    t.fail(key, "= " + fmt(key[1] == 'a' ? hi : lo) + ": " + e.what() + " under the " + kind + " law; widen it");
+  }
+}
+
+}  // namespace stengmc
