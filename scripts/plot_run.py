@@ -39,7 +39,10 @@ def open_checked(path):
 def labels(f):
     if "asperity/k" in f:
         return [f"k = {k:g} N/m" for k in f["asperity/k"][:]]
-    return [f"element {i + 1}" for i in range(f["asperity/x"].shape[0])]
+    for rows in ("asperity/x", "spectrum/current", "spectrum/expected_frequency"):
+        if rows in f:
+            return [f"element {i + 1}" for i in range(f[rows].shape[0])]
+    return []
 
 
 def plot_run(path):
@@ -131,8 +134,9 @@ def plot_spectra(path):
     if "spectrum/lines/frequency" in f and f["spectrum/lines/frequency"].shape[0]:
         ax.plot(f["spectrum/lines/frequency"][:] * 1e-6, f["spectrum/lines/amplitude"][:], "b^", ms=6, mfc="none",
                 label="ESPRIT lines")
-    if "asperity/natural_frequency" in f:
-        for i, fn in enumerate(f["asperity/natural_frequency"][:]):
+    expected = "spectrum/expected_frequency" if "spectrum/expected_frequency" in f else "asperity/natural_frequency"
+    if expected in f:
+        for i, fn in enumerate(f[expected][:]):
             ax.axvline(fn * 1e-6, color=f"C{i}", lw=0.8, ls="--")
     ax.set_xlim(0, min(freq_mhz[-1], 4.0 * max(1e-9, freq_mhz[np.argmax(f["spectrum/voltage"][1:]) + 1])))
     ax.set_ylabel("amplitude [V]")

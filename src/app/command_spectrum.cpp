@@ -11,6 +11,7 @@
 #include "io/spectrum_file.hpp"
 #include "io/toml_reader.hpp"
 #include "pipeline/analyse_spectra.hpp"
+#include "pipeline/slip_fraction.hpp"
 #include "pipeline/spectral_summary.hpp"
 
 namespace stengmc::app {
@@ -47,9 +48,18 @@ void run(const SpectrumOptions& options) {
   input.voltage_v = signal.voltage_v;
   if (!signal.currents_a.empty()) input.currents_a = &signal.currents_a;
   input.expected_frequency_hz = signal.expected_frequency_hz;
-  for (double fraction : signal.slip_fraction) input.sliding.push_back(fraction >= settings.min_slip_fraction);
   SpectralResult result;
   try {
+    // The same sliding rule over the same interval as `run` (pipeline/slip_fraction.hpp).
+    if (!signal.expected_frequency_hz.empty()) {
+      const AnalysisRange range = analysis_range(input.times_s, settings);
+      const SlidingRule rule{signal.model1, signal.belt_velocity_m_per_s, signal.sharpness_s_per_m};
+      for (const auto& v : signal.velocity_m_per_s) {
+        const std::size_t first = std::min(range.first_sample, v.size());
+        const std::span<const double> interval(v.data() + first, std::min(range.samples, v.size() - first));
+        input.sliding.push_back(slip_fraction(rule, interval) >= settings.min_slip_fraction);
+      }
+    }
     result = analyse_spectra(input, settings);
   } catch (const InputError& e) {
     throw InputError(options.input + ": " + e.what());

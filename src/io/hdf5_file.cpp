@@ -263,6 +263,20 @@ std::string Hdf5Reader::string_attribute(const std::string& object, const std::s
   });
 }
 
+std::optional<double> Hdf5Reader::number_attribute(const std::string& object, const std::string& name) const {
+  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<double> {
+    if (!has(object) && object != "/") return std::nullopt;
+    H5::Group group = file_.openGroup(object);
+    if (!group.attrExists(name)) return std::nullopt;
+    H5::Attribute attribute = group.openAttribute(name);
+    if (attribute.getTypeClass() != H5T_FLOAT && attribute.getTypeClass() != H5T_INTEGER)
+      throw InputError(path_ + ": attribute " + object + "@" + name + " is not a number");
+    double value = 0.0;
+    attribute.read(H5::PredType::NATIVE_DOUBLE, &value);
+    return value;
+  });
+}
+
 std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& object, const std::string& name) const {
   return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<std::int64_t> {
     H5::Group group = file_.openGroup(object);

@@ -68,6 +68,8 @@ class Hdf5Reader {
   [[nodiscard]] std::vector<std::vector<double>> matrix(const std::string& path) const;
   //! String attribute, or "" when absent.
   [[nodiscard]] std::string string_attribute(const std::string& object, const std::string& name) const;
+  //! Numeric attribute, or nothing when absent.
+  [[nodiscard]] std::optional<double> number_attribute(const std::string& object, const std::string& name) const;
   //! Integer attribute, or nothing when absent.
   [[nodiscard]] std::optional<std::int64_t> integer_attribute(const std::string& object, const std::string& name) const;
 

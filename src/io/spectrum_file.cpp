@@ -41,6 +41,12 @@ void write_spectra(Hdf5Writer& file, const SpectralResult& result, const Spectru
   file.attribute("/spectrum", "prominence_over_floor", settings.peaks.prominence_over_floor);
   file.attribute("/spectrum", "identification_tolerance", settings.identifiability.relative_tolerance);
   file.attribute("/spectrum", "dynamic_range_db", settings.dynamic_range_db);
+  file.attribute("/spectrum", "start_time_s", result.start_time_s);
+  file.attribute("/spectrum", "mean_v", result.mean_v);
+  file.write("/spectrum/expected_frequency", result.expected_frequency_hz, "Hz");
+  std::vector<std::int64_t> sliding;
+  for (bool b : result.sliding) sliding.push_back(b ? 1 : 0);
+  file.write("/spectrum/sliding", sliding, "1");
 
   file.write("/spectrum/peaks/frequency", column(result.peaks, [](const Peak& p) { return p.frequency_hz; }), "Hz");
   file.write("/spectrum/peaks/amplitude", column(result.peaks, [](const Peak& p) { return p.amplitude; }), "V");
@@ -53,6 +59,8 @@ void write_spectra(Hdf5Writer& file, const SpectralResult& result, const Spectru
     file.write("/spectrum/lines/damping", column(result.lines, [](const Line& l) { return l.damping_per_s; }), "1/s");
     file.write("/spectrum/lines/phase", column(result.lines, [](const Line& l) { return l.phase_rad; }), "rad");
     file.attribute("/spectrum/lines", "order_criterion", order_criterion_name(settings.esprit.criterion));
+    file.attribute("/spectrum/lines", "samples_used",
+                   static_cast<std::int64_t>(std::min(result.samples, settings.esprit.max_samples)));
     write_identifiability(file, "/spectrum/identifiability/high_resolution", *result.high_resolution);
   }
   if (result.spectrogram) {

@@ -3,6 +3,7 @@
 //! high-resolution lines, each element current's spectrum, the spectrogram, and the
 //! identifiability of each sliding asperity's line.
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -24,9 +25,22 @@ struct SpectralInput {
   std::vector<bool> sliding;                          //!< per asperity: does it slide in the interval
 };
 
+//! The analysis interval as samples: half-open [t0 + start_s, t0 + end_s).
+struct AnalysisRange {
+  std::size_t first_sample = 0;
+  std::size_t samples = 0;
+  double sample_rate_hz = 0.0;
+};
+
+//! The interval `settings` selects on a uniform grid (InputError if not uniform).
+AnalysisRange analysis_range(std::span<const double> times_s, const SpectrumSettings& settings);
+
 struct SpectralResult {
   std::size_t first_sample = 0;          //!< analysis interval [first, first + samples)
   std::size_t samples = 0;
+  double start_time_s = 0.0;             //!< time of the first analysed sample [s]
+  double mean_v = 0.0;                   //!< the voltage's mean over the interval, removed before analysis (A_0) [V]
+  std::vector<std::string> notes;        //!< plain-language caveats
   double sample_rate_hz = 0.0;
   std::vector<double> expected_frequency_hz;  //!< per asperity, as given
   std::vector<bool> sliding;                  //!< per asperity, as given

@@ -96,26 +96,25 @@ std::size_t valid_prefix(const Study& study, const std::vector<const Motion*>& i
 }
 
 //! Spectra of the valid part of the run; an asperity is expected to show its line at its
-//! damped natural frequency when it slides for at least min_slip_fraction of the interval.
+//! damped natural frequency when it slides for at least min_slip_fraction of the same
+//! interval the spectrum analyses.
 SpectralResult analyse_run_spectra(const Study& study, const RunResult& result) {
   const SpectrumSettings& settings = *study.spectrum;
   SpectralInput input;
   input.times_s = std::span<const double>(result.times_s.data(), result.circuit_samples);
   input.voltage_v = result.circuit.voltage_v;
   input.currents_a = &result.circuit.current_a;
-  const double first_time = settings.start_s;
-  const double last_time = settings.end_s > 0.0 ? settings.end_s : result.times_s.back();
-  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
-    const Asperity& a = study.asperities[i];
-    const double damping = study.model == ModelKind::model2 ? study.model2.damping_n_s_per_m : 0.0;
-    input.expected_frequency_hz.push_back(damped_natural_frequency_hz(a.stiffness_n_per_m, a.mass_kg, damping));
-    const auto& v = result.trajectories[i].v_m_per_s;
-    const auto first = std::lower_bound(result.times_s.begin(), result.times_s.end(), first_time) - result.times_s.begin();
-    const auto last = std::upper_bound(result.times_s.begin(), result.times_s.end(), last_time) - result.times_s.begin();
-    const std::span<const double> interval(v.data() + first, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, last - first)));
-    input.sliding.push_back(slip_fraction(study, interval) >= settings.min_slip_fraction);
-  }
   try {
+    const AnalysisRange range = analysis_range(input.times_s, settings);
+    for (std::size_t i = 0; i < study.asperities.size(); ++i) {
+      const Asperity& a = study.asperities[i];
+      const double damping = study.model == ModelKind::model2 ? study.model2.damping_n_s_per_m : 0.0;
+      input.expected_frequency_hz.push_back(damped_natural_frequency_hz(a.stiffness_n_per_m, a.mass_kg, damping));
+      const auto& v = result.trajectories[i].v_m_per_s;
+      const std::size_t first = std::min(range.first_sample, v.size());
+      const std::span<const double> interval(v.data() + first, std::min(range.samples, v.size() - first));
+      input.sliding.push_back(slip_fraction(study, interval) >= settings.min_slip_fraction);
+    }
     return analyse_spectra(input, settings);
   } catch (const InputError& e) {
     throw InputError(study.file + ": [spectrum]: " + e.what());

@@ -23,7 +23,7 @@ std::string format_spectral_summary(const SpectralResult& result) {
   char line[256];
   std::snprintf(line, sizeof line,
                 "spectrum: %zu samples from t = %.4g s, resolution %.4g Hz, noise floor %.3g V, %zu FFT peaks",
-                result.samples, static_cast<double>(result.first_sample) / result.sample_rate_hz,
+                result.samples, result.start_time_s,
                 result.voltage.resolution_hz, result.noise_floor_v, result.peaks.size());
   out += line;
   if (result.high_resolution) out += ", " + std::to_string(result.lines.size()) + " ESPRIT lines";
@@ -47,7 +47,9 @@ std::string format_spectral_summary(const SpectralResult& result) {
                   result.high_resolution->n_sliding, result.high_resolution->ratio);
     out += line;
   }
-  return out + "\n";
+  out += "\n";
+  for (const std::string& note : result.notes) out += "NOTE: " + note + "\n";
+  return out;
 }
 
 }  // namespace stengmc

@@ -25,7 +25,7 @@ struct EspritOptions {
   std::size_t max_lines = 16;         //!< largest number of real lines considered
   OrderCriterion criterion = OrderCriterion::mdl;
   std::size_t fixed_lines = 0;        //!< > 0: skip the criterion and use this many lines
-  std::size_t max_samples = 4096;     //!< longer signals: only the first max_samples samples are analysed
+  std::size_t max_samples = 16384;    //!< longer signals: only the first max_samples samples are analysed
   std::size_t max_hankel_rows = 256;  //!< cap on the Hankel rows L (~N/3 otherwise): cost O(L^3 + L N)
   double min_frequency_hz = 0.0;      //!< drop lines below (DC, drift)
   bool refine = true;                 //!< polish ESPRIT's lines by nonlinear least squares on all analysed samples

@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "core/constants.hpp"
@@ -77,6 +80,33 @@ TEST(SpectrumCommand, ReanalysesARunFileWithItsExpectedLines) {
   const auto identified = file.vector("/spectrum/identifiability/fft/identified");
   EXPECT_EQ(identified, (std::vector<double>{1, 1, 1, 1})) << r.output;
   EXPECT_EQ(Hdf5Reader(scratch.file("run.h5")).vector("/spectrum/identifiability/fft/identified"), identified);
+}
+
+TEST(SpectrumCommand, AgreesWithRunOnWhichAsperitiesSlideAndRendersFigures) {
+  // Fig. 6 at v_b = 1 m/s: the k = 25 N/m asperity slides 0.888 of the whole run but more
+  // of the analysed interval. With min_slip_fraction = 0.9 between the two, `run` and
+  // `spectrum` must still agree: both judge sliding on the same interval.
+  ScratchDir scratch("spectrum-agree");
+  std::ifstream in(std::string(STENGMC_SOURCE_DIR) + "/studies/paper/fig6_vb1_l50.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("[spectrum]\n"), 11, "[spectrum]\nmin_slip_fraction = 0.9\n");
+  text.replace(text.find("../../surfaces/"), 15, std::string(STENGMC_SOURCE_DIR) + "/surfaces/");
+  const std::string study = scratch.write("study.toml", text);
+  ASSERT_EQ(run_cli("run " + study + " --out " + scratch.file("run.h5"), scratch).exit_code, 0);
+  const auto r = run_cli("spectrum " + scratch.file("run.h5") + " --settings " + study + " --out " + scratch.file("s.h5") + " --figures", scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(Hdf5Reader(scratch.file("run.h5")).vector("/spectrum/sliding"), Hdf5Reader(scratch.file("s.h5")).vector("/spectrum/sliding"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.file("s_spectrum.png"))) << r.output;
+}
+
+TEST(SpectrumCommand, RejectsAWrongHeaderAndUnitsInCsvValues) {
+  ScratchDir scratch("spectrum-strict");
+  auto r = run_cli("spectrum " + scratch.write("a.csv", "t,Voltage\n0,1\n") + " --out " + scratch.file("s.h5"), scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("a.csv:1: header must be `t,V`"), std::string::npos) << r.output;
+  r = run_cli("spectrum " + scratch.write("b.csv", "t,V\n0.0s,1\n") + " --out " + scratch.file("s.h5"), scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("b.csv:2:"), std::string::npos) << r.output;
 }
 
 }  // namespace
