@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "io/study.hpp"
 
 #include <algorithm>
@@ -20,20 +21,13 @@ namespace {
 // Output arrays are n x M doubles, several of them; refuse studies that cannot fit.
 constexpr double MAX_SAMPLES_TIMES_ASPERITIES = 5e7;  // ~2 GB of traces
 
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
-
 FrictionCoefficients read_friction(TomlTable& model) {
   FrictionCoefficients f;
   f.static_coefficient = model.positive("static_friction", f.static_coefficient);
   f.kinetic_coefficient = model.non_negative("kinetic_friction", f.kinetic_coefficient);
   if (f.static_coefficient < f.kinetic_coefficient)
-    model.fail("static_friction", "= " + number_text(f.static_coefficient) + " must be >= kinetic_friction = " +
-                                      number_text(f.kinetic_coefficient));
+    model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be >= kinetic_friction = " +
+                                      format_number(f.kinetic_coefficient));
   return f;
 }
 
@@ -66,7 +60,7 @@ void read_model(TomlTable& root, Study& study) {
     p.friction_form = form == "consistent" ? FrictionForm::consistent : FrictionForm::literal;
     p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
     if (p.relative_tolerance >= 1e-2 || p.relative_tolerance < 1e-14)
-      model->fail("relative_tolerance", "= " + number_text(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
+      model->fail("relative_tolerance", "= " + format_number(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
   }
 }
 
@@ -115,9 +109,9 @@ void check_sample_rate(TomlTable& root, const Study& study) {
     if (f > highest_hz) highest_hz = f, which = i;
   }
   if (study.sample_rate_hz < 2.0 * highest_hz)
-    root.fail("sample_rate_hz", "= " + number_text(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
-                                    number_text(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
-                                    "): use at least " + number_text(2.0 * highest_hz) + " Hz");
+    root.fail("sample_rate_hz", "= " + format_number(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
+                                    format_number(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
+                                    "): use at least " + format_number(2.0 * highest_hz) + " Hz");
 }
 
 std::string default_output_file(const std::string& study_file) {
@@ -158,14 +152,14 @@ Study parse(TomlDocument& document) {
   // The grid must end at duration_s: a fractional sample count would silently change it.
   const double intervals = study.duration_s * study.sample_rate_hz;
   if (std::abs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals))
-    root.fail("duration_s", "x sample_rate_hz = " + number_text(intervals) +
+    root.fail("duration_s", "x sample_rate_hz = " + format_number(intervals) +
                                 " is not a whole number of sample intervals; adjust duration_s or sample_rate_hz");
   const double samples = std::round(intervals) + 1.0;
   if (samples < 2.0)
     root.fail("duration_s", "x sample_rate_hz gives fewer than 2 samples; lengthen duration_s or raise sample_rate_hz");
   if (samples * static_cast<double>(study.asperities.size()) > MAX_SAMPLES_TIMES_ASPERITIES)
-    root.fail("duration_s", "x sample_rate_hz x asperities = " + number_text(samples * static_cast<double>(study.asperities.size())) +
-                                " samples: above the limit of " + number_text(MAX_SAMPLES_TIMES_ASPERITIES) + " for one run");
+    root.fail("duration_s", "x sample_rate_hz x asperities = " + format_number(samples * static_cast<double>(study.asperities.size())) +
+                                " samples: above the limit of " + format_number(MAX_SAMPLES_TIMES_ASPERITIES) + " for one run");
   return study;
 }
 

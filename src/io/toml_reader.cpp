@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
@@ -10,13 +11,6 @@
 namespace stengmc {
 
 namespace {
-
-std::string format_number(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
 
 std::string join(const std::vector<std::string_view>& items) {
   std::string out;

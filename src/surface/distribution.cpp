@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "surface/distribution.hpp"
 
 #include <algorithm>
@@ -27,13 +28,6 @@ namespace {
 
 constexpr double MIN_MASS = 1e-12;  // truncations keeping less than this are rejected
 
-std::string fmt(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
-}
-
 // Uniform on the open interval (0, 1) from the top 53 bits: (k + 1/2) 2^-53, so that
 // quantiles of unbounded laws stay finite. A fixed algorithm, like Boost's.
 double open_uniform(RandomEngine& engine) { return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53; }
@@ -56,31 +50,31 @@ Distribution::Distribution(Kind kind, double a, double b, double min, double max
     : kind_(kind), a_(a), b_(b), min_(min), max_(max) {}
 
 Distribution Distribution::normal(double mean, double std, double min, double max) {
-  if (!(std > 0.0)) throw InputError("normal distribution: std = " + fmt(std) + " must be > 0");
+  if (!(std > 0.0)) throw InputError("normal distribution: std = " + format_number(std) + " must be > 0");
   Distribution d(Kind::normal, mean, std, -INFINITY, INFINITY);
   d.set_truncation(min, max);
   return d;
 }
 
 Distribution Distribution::lognormal(double median, double sigma_log, double min, double max) {
-  if (!(median > 0.0)) throw InputError("lognormal distribution: median = " + fmt(median) + " must be > 0");
-  if (!(sigma_log > 0.0)) throw InputError("lognormal distribution: sigma_log = " + fmt(sigma_log) + " must be > 0");
+  if (!(median > 0.0)) throw InputError("lognormal distribution: median = " + format_number(median) + " must be > 0");
+  if (!(sigma_log > 0.0)) throw InputError("lognormal distribution: sigma_log = " + format_number(sigma_log) + " must be > 0");
   Distribution d(Kind::lognormal, median, sigma_log, 0.0, INFINITY);
   d.set_truncation(std::max(min, 0.0), max);
   return d;
 }
 
 Distribution Distribution::gamma(double shape, double scale, double min, double max) {
-  if (!(shape > 0.0)) throw InputError("gamma distribution: shape = " + fmt(shape) + " must be > 0");
-  if (!(scale > 0.0)) throw InputError("gamma distribution: scale = " + fmt(scale) + " must be > 0");
+  if (!(shape > 0.0)) throw InputError("gamma distribution: shape = " + format_number(shape) + " must be > 0");
+  if (!(scale > 0.0)) throw InputError("gamma distribution: scale = " + format_number(scale) + " must be > 0");
   Distribution d(Kind::gamma, shape, scale, 0.0, INFINITY);
   d.set_truncation(std::max(min, 0.0), max);
   return d;
 }
 
 Distribution Distribution::weibull(double shape, double scale, double min, double max) {
-  if (!(shape > 0.0)) throw InputError("weibull distribution: shape = " + fmt(shape) + " must be > 0");
-  if (!(scale > 0.0)) throw InputError("weibull distribution: scale = " + fmt(scale) + " must be > 0");
+  if (!(shape > 0.0)) throw InputError("weibull distribution: shape = " + format_number(shape) + " must be > 0");
+  if (!(scale > 0.0)) throw InputError("weibull distribution: scale = " + format_number(scale) + " must be > 0");
   Distribution d(Kind::weibull, shape, scale, 0.0, INFINITY);
   d.set_truncation(std::max(min, 0.0), max);
   return d;
@@ -88,7 +82,7 @@ Distribution Distribution::weibull(double shape, double scale, double min, doubl
 
 Distribution Distribution::uniform(double min, double max) {
   if (!(std::isfinite(min) && std::isfinite(max) && max > min))
-    throw InputError("uniform distribution: max = " + fmt(max) + " must be > min = " + fmt(min));
+    throw InputError("uniform distribution: max = " + format_number(max) + " must be > min = " + format_number(min));
   Distribution d = empirical({{min, max, 1.0}});
   d.kind_ = Kind::uniform;
   return d;
@@ -97,7 +91,7 @@ Distribution Distribution::uniform(double min, double max) {
 Distribution Distribution::fixed(std::vector<double> values) {
   if (values.empty()) throw InputError("fixed distribution: values must hold at least one number");
   for (double v : values)
-    if (!std::isfinite(v)) throw InputError("fixed distribution: value " + fmt(v) + " is not finite");
+    if (!std::isfinite(v)) throw InputError("fixed distribution: value " + format_number(v) + " is not finite");
   std::sort(values.begin(), values.end());
   Distribution d(Kind::fixed, 0.0, 0.0, values.front(), values.back());
   d.values_ = std::move(values);
@@ -132,7 +126,7 @@ Distribution Distribution::empirical(std::vector<Bin> bins) {
 
 void Distribution::set_truncation(double min, double max) {
   if (std::isnan(min) || std::isnan(max) || !(max > min))
-    throw InputError("truncation: max = " + fmt(max) + " must be > min = " + fmt(min));
+    throw InputError("truncation: max = " + format_number(max) + " must be > min = " + format_number(min));
   truncated_ = min > min_ || max < max_;
   min_ = std::max(min, min_);
   max_ = std::min(max, max_);
@@ -143,7 +137,7 @@ void Distribution::set_truncation(double min, double max) {
   // Take the difference on the side where it does not cancel (upper-tail truncations).
   mass_ = cdf_min_ > 0.5 ? sf_min_ - sf_max_ : cdf_max_ - cdf_min_;
   if (!(mass_ >= MIN_MASS))
-    throw InputError("truncation to [" + fmt(min_) + ", " + fmt(max_) + "] leaves probability " + fmt(mass_) +
+    throw InputError("truncation to [" + format_number(min_) + ", " + format_number(max_) + "] leaves probability " + format_number(mass_) +
                      " < 1e-12");
 }
 

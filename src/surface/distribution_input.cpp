@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/format.hpp"
 #include "core/error.hpp"
 #include "io/toml_reader.hpp"
 #include "surface/distribution.hpp"
@@ -12,13 +13,6 @@
 namespace stengmc {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
-}
 
 }  // namespace
 
@@ -28,7 +22,7 @@ namespace {
 
 double required_positive(TomlTable& t, std::string_view key) {
   const double v = t.required_number(key);
-  if (!(v > 0.0)) t.fail(key, "= " + fmt(v) + " must be > 0");
+  if (!(v > 0.0)) t.fail(key, "= " + format_number(v) + " must be > 0");
   return v;
 }
 
@@ -73,11 +67,11 @@ std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesyste
     first_content = false;
     if (header) continue;
     if (!numeric) throw InputError(where + "expected three numbers 'lower,upper,weight', got '" + line + "'");
-    if (!(b.upper > b.lower)) throw InputError(where + "upper = " + fmt(b.upper) + " must be > lower = " + fmt(b.lower));
-    if (b.weight < 0.0) throw InputError(where + "weight = " + fmt(b.weight) + " must be >= 0");
+    if (!(b.upper > b.lower)) throw InputError(where + "upper = " + format_number(b.upper) + " must be > lower = " + format_number(b.lower));
+    if (b.weight < 0.0) throw InputError(where + "weight = " + format_number(b.weight) + " must be >= 0");
     if (!bins.empty() && b.lower < bins.back().upper)
-      throw InputError(where + "lower = " + fmt(b.lower) + " overlaps the previous bin, which ends at " +
-                       fmt(bins.back().upper) + " (bins must be increasing)");
+      throw InputError(where + "lower = " + format_number(b.lower) + " overlaps the previous bin, which ends at " +
+                       format_number(bins.back().upper) + " (bins must be increasing)");
     bins.push_back(b);
   }
   if (bins.empty()) throw InputError(file.string() + ": the histogram has no bins");
@@ -93,7 +87,7 @@ Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& 
       t.choice("kind", "", {"normal", "lognormal", "uniform", "gamma", "weibull", "fixed", "empirical"});
   if (kind == "uniform") {
     const double lo = t.required_number("min"), hi = t.required_number("max");
-    if (!(hi > lo)) t.fail("max", "= " + fmt(hi) + " must be > min = " + fmt(lo));
+    if (!(hi > lo)) t.fail("max", "= " + format_number(hi) + " must be > min = " + format_number(lo));
     return uniform(lo, hi);
   }
   if (kind == "fixed") return fixed(read_values(t, "values"));
@@ -114,7 +108,7 @@ Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& 
   const double second = required_positive(t, normal_kind ? "std" : kind == "lognormal" ? "sigma_log" : "scale");
   const double lo = t.number("min", normal_kind ? -INFINITY : 0.0);
   const double hi = t.number("max", INFINITY);
-  if (!(hi > lo)) t.fail("max", "= " + fmt(hi) + " must be > min = " + fmt(lo));
+  if (!(hi > lo)) t.fail("max", "= " + format_number(hi) + " must be > min = " + format_number(lo));
   try {
     if (normal_kind) return normal(first, second, lo, hi);
     if (kind == "lognormal") return lognormal(first, second, lo, hi);
@@ -122,7 +116,7 @@ Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& 
     return weibull(first, second, lo, hi);
   } catch (const InputError& e) {  // only the truncation can still be wrong here
     const char* key = t.has("max") ? "max" : "min";
-    t.fail(key, "= " + fmt(key[1] == 'a' ? hi : lo) + ": " + e.what() + " under the " + kind + " law; widen it");
+    t.fail(key, "= " + format_number(key[1] == 'a' ? hi : lo) + ": " + e.what() + " under the " + kind + " law; widen it");
   }
 }
 

@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "surface/hertz_contact.hpp"
 
 #include <algorithm>
@@ -15,17 +16,11 @@ namespace stengmc {
 
 namespace {
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void validate_inputs(const std::vector<double>& heights_m, double summit_radius_m, double effective_modulus_pa) {
   if (!std::isfinite(summit_radius_m) || summit_radius_m <= 0.0)
-    throw InputError("hertz contact: summit radius R_s = " + fmt(summit_radius_m) + " m must be > 0");
+    throw InputError("hertz contact: summit radius R_s = " + format_number(summit_radius_m) + " m must be > 0");
   if (!std::isfinite(effective_modulus_pa) || effective_modulus_pa <= 0.0)
-    throw InputError("hertz contact: effective modulus E* = " + fmt(effective_modulus_pa) + " Pa must be > 0");
+    throw InputError("hertz contact: effective modulus E* = " + format_number(effective_modulus_pa) + " Pa must be > 0");
   for (std::size_t i = 0; i < heights_m.size(); ++i)
     if (!std::isfinite(heights_m[i]))
       throw InputError("hertz contact: height of asperity " + std::to_string(i) + " is not finite");
@@ -97,7 +92,7 @@ HertzContact hertz_contact_at_separation(const std::vector<double>& heights_m, d
                                          double effective_modulus_pa, double separation_m) {
   validate_inputs(heights_m, summit_radius_m, effective_modulus_pa);
   if (!std::isfinite(separation_m))
-    throw InputError("hertz contact: separation d = " + fmt(separation_m) + " m must be finite");
+    throw InputError("hertz contact: separation d = " + format_number(separation_m) + " m must be finite");
   // Direct interference z_i - d: the caller chose d, so its own rounding is the reference.
   std::vector<double> gaps(heights_m.size());
   for (std::size_t i = 0; i < gaps.size(); ++i) gaps[i] = -heights_m[i];
@@ -110,10 +105,10 @@ HertzContact solve_hertz_contact(const std::vector<double>& heights_m, double su
                                  double effective_modulus_pa, double nominal_load_n) {
   validate_inputs(heights_m, summit_radius_m, effective_modulus_pa);
   if (!std::isfinite(nominal_load_n) || nominal_load_n <= 0.0)
-    throw ModelError("hertz contact: nominal load W = " + fmt(nominal_load_n) +
+    throw ModelError("hertz contact: nominal load W = " + format_number(nominal_load_n) +
                      " N cannot be carried by any separation (need a finite W > 0; the flat does not adhere)");
   if (heights_m.empty())
-    throw ModelError("hertz contact: nominal load W = " + fmt(nominal_load_n) +
+    throw ModelError("hertz contact: nominal load W = " + format_number(nominal_load_n) +
                      " N cannot be carried: the population has no asperities");
 
   const double z_max = *std::max_element(heights_m.begin(), heights_m.end());
@@ -133,7 +128,7 @@ HertzContact solve_hertz_contact(const std::vector<double>& heights_m, double su
   double u_hi = std::cbrt(std::pow(3.0 * w / (4.0 * effective_modulus_pa * std::sqrt(summit_radius_m)), 2.0));
   double f_hi = f(u_hi);
   for (int k = 0; f_hi < 0.0 && k < 60; ++k) f_hi = f(u_hi *= 2.0);
-  if (f_hi < 0.0) throw ModelError("hertz contact: could not bracket the load W = " + fmt(w) + " N");
+  if (f_hi < 0.0) throw ModelError("hertz contact: could not bracket the load W = " + format_number(w) + " N");
 
   double u = u_hi;
   std::uintmax_t iterations = 200;
@@ -151,14 +146,14 @@ HertzContact solve_hertz_contact(const std::vector<double>& heights_m, double su
   c.solver_iterations = static_cast<int>(iterations);
   c.load_relative_error = std::abs(c.total_load_n - w) / w;
   if (!(c.load_relative_error <= HERTZ_LOAD_RELATIVE_TOLERANCE))
-    throw ModelError("hertz contact: load solve reached relative error " + fmt(c.load_relative_error) +
-                     " > 1e-12 for W = " + fmt(w) + " N after " + std::to_string(iterations) + " iterations");
+    throw ModelError("hertz contact: load solve reached relative error " + format_number(c.load_relative_error) +
+                     " > 1e-12 for W = " + format_number(w) + " N after " + std::to_string(iterations) + " iterations");
   return c;
 }
 
 double screening_interaction_estimate(double contact_density) {
   if (!std::isfinite(contact_density) || contact_density < 0.0)
-    throw InputError("screening estimate: contact density A_r/A0 = " + fmt(contact_density) + " must be >= 0");
+    throw InputError("screening estimate: contact density A_r/A0 = " + format_number(contact_density) + " must be >= 0");
   return 4.0 / (3.0 * PI) * std::pow(contact_density, 1.5);
 }
 

@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "surface/interaction.hpp"
 
 #include <algorithm>
@@ -11,12 +12,6 @@
 namespace stengmc {
 
 namespace {
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 //! Normal displacement (both bodies, modulus E*) at distance r from a spot of load N and
 //! patch radius a.
@@ -97,9 +92,9 @@ SpotInteraction spot_interaction(const std::vector<double>& x_m, const std::vect
   if (y_m.size() != n || load_n.size() != n || patch_radius_m.size() != n || interference_m.size() != n)
     throw InputError("spot interaction: positions, loads, patch radii and interferences must have equal lengths");
   if (!std::isfinite(effective_modulus_pa) || effective_modulus_pa <= 0.0)
-    throw InputError("spot interaction: effective modulus E* = " + fmt(effective_modulus_pa) + " Pa must be > 0");
+    throw InputError("spot interaction: effective modulus E* = " + format_number(effective_modulus_pa) + " Pa must be > 0");
   if (!std::isfinite(nominal_area_m2) || nominal_area_m2 <= 0.0)
-    throw InputError("spot interaction: nominal area A0 = " + fmt(nominal_area_m2) + " m^2 must be > 0");
+    throw InputError("spot interaction: nominal area A0 = " + format_number(nominal_area_m2) + " m^2 must be > 0");
   if (!(settings.localisation_radius_m >= 0.0) || !(settings.localisation_spacings > 0.0))
     throw InputError("spot interaction: localisation_radius_m must be >= 0 and localisation_spacings > 0");
 

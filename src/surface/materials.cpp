@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "surface/materials.hpp"
 
 #include <cmath>
@@ -8,23 +9,17 @@
 namespace stengmc {
 
 namespace {
-// %g keeps 2.8e9 Pa and 1e-3 readable where fmt would print 2800000000.000000.
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 }  // namespace
 
 void validate_elastic_body(const ElasticBody& body, const std::string& name) {
   if (!std::isfinite(body.youngs_modulus_pa) || body.youngs_modulus_pa <= 0.0)
-    throw InputError(name + ": youngs_modulus_pa = " + fmt(body.youngs_modulus_pa) +
+    throw InputError(name + ": youngs_modulus_pa = " + format_number(body.youngs_modulus_pa) +
                      " must be a finite number > 0");
   // nu = 0.5 (incompressible) is physical but 1 - nu^2 and 2 - nu stay finite there;
   // the brief keeps the open interval so a typo such as 5 instead of 0.5 is caught
   // together with the thermodynamic bound nu > -1.
   if (!std::isfinite(body.poisson_ratio) || body.poisson_ratio <= -1.0 || body.poisson_ratio >= 0.5)
-    throw InputError(name + ": poisson_ratio = " + fmt(body.poisson_ratio) +
+    throw InputError(name + ": poisson_ratio = " + format_number(body.poisson_ratio) +
                      " must satisfy -1 < nu < 0.5");
 }
 
@@ -51,9 +46,9 @@ double effective_shear_modulus(const ElasticBody& body_1, const ElasticBody& bod
 double mindlin_stiffness(double effective_shear_modulus_pa, double patch_radius_m) {
   if (!std::isfinite(effective_shear_modulus_pa) || effective_shear_modulus_pa <= 0.0)
     throw InputError("mindlin stiffness: effective shear modulus G* = " +
-                     fmt(effective_shear_modulus_pa) + " Pa must be > 0");
+                     format_number(effective_shear_modulus_pa) + " Pa must be > 0");
   if (!std::isfinite(patch_radius_m) || patch_radius_m < 0.0)
-    throw InputError("mindlin stiffness: patch radius a = " + fmt(patch_radius_m) +
+    throw InputError("mindlin stiffness: patch radius a = " + format_number(patch_radius_m) +
                      " m must be >= 0");
   return 8.0 * effective_shear_modulus_pa * patch_radius_m;
 }
