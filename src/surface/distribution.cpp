@@ -64,20 +64,27 @@ Distribution Distribution::lognormal(double median, double sigma_log, double min
   return d;
 }
 
-Distribution Distribution::gamma(double shape, double scale, double min, double max) {
-  if (!(shape > 0.0)) throw InputError("gamma distribution: shape = " + format_number(shape) + " must be > 0");
-  if (!(scale > 0.0)) throw InputError("gamma distribution: scale = " + format_number(scale) + " must be > 0");
-  Distribution d(Kind::gamma, shape, scale, 0.0, INFINITY);
+namespace {
+//! Gamma and Weibull share their parameters (shape, scale > 0) and support [0, inf).
+void check_shape_and_scale(const char* name, double shape, double scale) {
+  if (!(shape > 0.0)) throw InputError(std::string(name) + " distribution: shape = " + format_number(shape) + " must be > 0");
+  if (!(scale > 0.0)) throw InputError(std::string(name) + " distribution: scale = " + format_number(scale) + " must be > 0");
+}
+}  // namespace
+
+Distribution Distribution::shape_scale(Kind kind, double shape, double scale, double min, double max) {
+  check_shape_and_scale(kind == Kind::gamma ? "gamma" : "weibull", shape, scale);
+  Distribution d(kind, shape, scale, 0.0, INFINITY);
   d.set_truncation(std::max(min, 0.0), max);
   return d;
 }
 
+Distribution Distribution::gamma(double shape, double scale, double min, double max) {
+  return shape_scale(Kind::gamma, shape, scale, min, max);
+}
+
 Distribution Distribution::weibull(double shape, double scale, double min, double max) {
-  if (!(shape > 0.0)) throw InputError("weibull distribution: shape = " + format_number(shape) + " must be > 0");
-  if (!(scale > 0.0)) throw InputError("weibull distribution: scale = " + format_number(scale) + " must be > 0");
-  Distribution d(Kind::weibull, shape, scale, 0.0, INFINITY);
-  d.set_truncation(std::max(min, 0.0), max);
-  return d;
+  return shape_scale(Kind::weibull, shape, scale, min, max);
 }
 
 Distribution Distribution::uniform(double min, double max) {

@@ -87,6 +87,8 @@ class Distribution {
  private:
   Distribution(Kind kind, double a, double b, double min, double max);
   void set_truncation(double min, double max);
+  //! Gamma or Weibull: shape and scale > 0, support [0, inf), optionally truncated.
+  static Distribution shape_scale(Kind kind, double shape, double scale, double min, double max);
   double from_probability(double p, double q) const;
   double base_cdf(double x) const;
   double base_sf(double x) const;
