@@ -9,7 +9,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "io/toml_reader.hpp"
-#include "surface/fixed_population.hpp"
+#include "surface/surface.hpp"
 
 namespace stengmc {
 
@@ -66,23 +66,36 @@ void read_model(TomlTable& root, Study& study) {
 
 void read_surface(TomlTable& root, Study& study) {
   auto surface = root.table("surface");
-  if (!surface) root.fail("surface", "is missing: a [surface] table with file = \"...\" or [[surface.asperity]] entries is required");
-  if (surface->has("file")) {
-    if (surface->has("asperity") || surface->has("defaults"))
-      surface->fail("file", "cannot be combined with inline [surface.defaults] / [[surface.asperity]]: choose one");
-    const std::string name = surface->string("file", "");
-    const std::filesystem::path base = std::filesystem::path(study.file).parent_path();
-    const std::filesystem::path path = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : base / name;
-    if (!std::filesystem::exists(path))
-      surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
-    auto document = TomlDocument::from_file(path.string());
-    TomlTable table = document->root();
-    study.asperities = read_fixed_population(table);
-    document->reject_unknown_keys();
-    study.surface_file = path.string();
-  } else {
-    study.asperities = read_fixed_population(*surface);
+  if (!surface)
+    root.fail("surface", "is missing: a [surface] table with file = \"...\", [[surface.asperity]] entries or kind = \"random\" is required");
+  const std::filesystem::path study_dir = std::filesystem::path(study.file).parent_path();
+  if (!surface->has("file")) {
+    study.surface = std::make_shared<const Surface>(Surface::from_toml(*surface, study_dir));
+    return;
   }
+  for (const char* inline_key : {"asperity", "defaults", "kind"})
+    if (surface->has(inline_key))
+      surface->fail("file", "cannot be combined with an inline surface ([surface] " + std::string(inline_key) + "): choose one");
+  const std::string name = surface->string("file", "");
+  const std::filesystem::path path = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name;
+  if (!std::filesystem::exists(path))
+    surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
+  auto document = TomlDocument::from_file(path.string());
+  TomlTable table = document->root();
+  study.surface = std::make_shared<const Surface>(Surface::from_toml(table, path.parent_path()));
+  document->reject_unknown_keys();
+  study.surface_file = path.string();
+  study.surface_text = document->text();
+}
+
+//! Draws the run's realisation; an empty one has nothing to simulate.
+void draw_population(TomlTable& root, Study& study) {
+  study.population = study.surface->sample(study.seed, study.realisation);
+  study.asperities = study.population.asperities;
+  if (study.asperities.empty())
+    throw ModelError(root.location("surface") + ": realisation " + std::to_string(study.realisation) +
+                     " of the surface has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
+                     " summits drawn, seed " + std::to_string(study.seed) + "): nothing to simulate");
 }
 
 void read_circuit(TomlTable& root, Study& study) {
@@ -111,6 +124,7 @@ void check_sample_rate(TomlTable& root, const Study& study) {
   if (study.sample_rate_hz < 2.0 * highest_hz)
     root.fail("sample_rate_hz", "= " + format_number(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
                                     format_number(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
+                                    (study.surface->random_surface() ? " of realisation " + std::to_string(study.realisation) : "") +
                                     "): use at least " + format_number(2.0 * highest_hz) + " Hz");
 }
 
@@ -118,8 +132,9 @@ std::string default_output_file(const std::string& study_file) {
   return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
 }
 
-Study parse(TomlDocument& document) {
+Study parse(TomlDocument& document, std::uint64_t realisation) {
   Study study;
+  study.realisation = realisation;
   study.file = document.file();
   study.text = document.text();
   TomlTable root = document.root();
@@ -148,6 +163,7 @@ Study parse(TomlDocument& document) {
   }
   document.reject_unknown_keys();
 
+  draw_population(root, study);
   check_sample_rate(root, study);
   // The grid must end at duration_s: a fractional sample count would silently change it.
   const double intervals = study.duration_s * study.sample_rate_hz;
@@ -165,14 +181,14 @@ Study parse(TomlDocument& document) {
 
 }  // namespace
 
-Study read_study(const std::string& file) {
+Study read_study(const std::string& file, std::uint64_t realisation) {
   auto document = TomlDocument::from_file(file);
-  return parse(*document);
+  return parse(*document, realisation);
 }
 
-Study parse_study(const std::string& text, const std::string& file) {
+Study parse_study(const std::string& text, const std::string& file, std::uint64_t realisation) {
   auto document = TomlDocument::from_string(text, file);
-  return parse(*document);
+  return parse(*document, realisation);
 }
 
 }  // namespace stengmc

@@ -4,11 +4,13 @@
 #include <string>
 #include <vector>
 
+#include <memory>
 #include <optional>
 
 #include "circuit/circuit_solver.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "surface/asperity.hpp"
+#include "surface/surface.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
 #include "tribology/time_grid.hpp"
@@ -51,7 +53,11 @@ struct Study {
   Model1Params model1;
   Model2Params model2;
   std::string surface_file;   //!< surface file the asperities came from, or "" if inline
-  std::vector<Asperity> asperities;
+  std::string surface_text;   //!< that file, verbatim (recorded beside the study text), or ""
+  std::shared_ptr<const Surface> surface;  //!< what every realisation's asperities are drawn from
+  std::uint64_t realisation = 0;           //!< the realisation `population` and `asperities` are
+  Population population;                   //!< that realisation: summits, contact, asperities
+  std::vector<Asperity> asperities;        //!< the asperities a run simulates (= population.asperities)
   CircuitParams circuit;
   CircuitInput circuit_input = CircuitInput::actual;
   DomainPolicy domain_policy = DomainPolicy::error;
@@ -63,12 +69,14 @@ struct Study {
   [[nodiscard]] TimeGrid grid() const { return TimeGrid::covering(duration_s, sample_rate_hz); }
 };
 
-//! Reads and validates a study file; throws InputError naming file, line, key and what
-//! was expected. Relative surface paths are taken from the study file's folder.
-Study read_study(const std::string& file);
+//! Reads and validates a study file and draws realisation `realisation` of its surface;
+//! throws InputError naming file, line, key and what was expected (ModelError when the
+//! realisation itself cannot be loaded). Relative surface paths are taken from the study
+//! file's folder.
+Study read_study(const std::string& file, std::uint64_t realisation = 0);
 
 //! The same from text (tests); `file` is used in messages and to resolve surface paths.
-Study parse_study(const std::string& text, const std::string& file);
+Study parse_study(const std::string& text, const std::string& file, std::uint64_t realisation = 0);
 
 std::string_view model_name(ModelKind kind);
 std::string_view domain_policy_name(DomainPolicy policy);

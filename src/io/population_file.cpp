@@ -1,0 +1,156 @@
+#include "io/population_file.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace stengmc {
+
+namespace {
+
+std::string prefix_of(const std::string& group) { return group == "/" ? "" : group; }
+
+//! One value per realisation.
+template <typename T, typename Field>
+std::vector<T> per_realisation(std::span<const Population> pops, std::span<const ValidityReport> reports, Field field) {
+  std::vector<T> out;
+  out.reserve(pops.size());
+  for (std::size_t j = 0; j < pops.size(); ++j) out.push_back(static_cast<T>(field(pops[j], reports[j])));
+  return out;
+}
+
+//! Concatenation of a per-summit array over realisations (zeros where a realisation lacks it).
+std::vector<double> concatenated(std::span<const Population> pops,
+                                 const std::function<const std::vector<double>*(const Population&)>& array) {
+  std::vector<double> out;
+  for (const Population& p : pops) {
+    const std::vector<double>* values = array(p);
+    if (values && values->size() == p.height_m.size()) out.insert(out.end(), values->begin(), values->end());
+    else out.insert(out.end(), p.height_m.size(), 0.0);
+  }
+  return out;
+}
+
+std::vector<double> asperity_column(std::span<const Population> pops, const std::function<double(const Asperity&)>& field) {
+  std::vector<double> out;
+  for (const Population& p : pops)
+    for (const Asperity& a : p.asperities) out.push_back(field(a));
+  return out;
+}
+
+void write_realisations(Hdf5Writer& f, const std::string& g, std::span<const Population> pops,
+                        std::span<const ValidityReport> reports, bool contact) {
+  using P = const Population&;
+  using R = const ValidityReport&;
+  f.write(g + "/realisations/realisation", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.realisation; }), "index");
+  f.write(g + "/realisations/summit_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.height_m.size(); }), "1");
+  f.write(g + "/realisations/asperity_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.asperities.size(); }), "1");
+  f.write(g + "/realisations/cannot_slip_model1_count",
+          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.cannot_slip_count; }), "1");
+  f.write(g + "/realisations/near_length_model2_count",
+          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.near_length_count; }), "1");
+  std::vector<std::string> warnings;
+  for (const ValidityReport& r : reports) warnings.push_back(joined_warnings(r));
+  f.write(g + "/realisations/warnings", warnings, "text");
+  std::vector<std::int64_t> summit_offset{0}, asperity_offset{0};
+  for (const Population& p : pops) {
+    summit_offset.push_back(summit_offset.back() + static_cast<std::int64_t>(p.height_m.size()));
+    asperity_offset.push_back(asperity_offset.back() + static_cast<std::int64_t>(p.asperities.size()));
+  }
+  f.write(g + "/realisations/summit_offset", summit_offset, "index");
+  f.write(g + "/realisations/asperity_offset", asperity_offset, "index");
+  if (!contact) return;
+  auto c = [](P p) -> const PopulationContact& { return *p.contact; };
+  f.write(g + "/realisations/separation_m", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).separation_m; }), "m");
+  f.write(g + "/realisations/total_load_n", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).total_load_n; }), "N");
+  f.write(g + "/realisations/real_area_m2", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).real_area_m2; }), "m^2");
+  f.write(g + "/realisations/contact_density", per_realisation<double>(pops, reports, [](P, R r) { return r.contact_density; }), "1");
+  f.write(g + "/realisations/screening_estimate", per_realisation<double>(pops, reports, [](P, R r) { return r.screening_estimate; }), "1");
+  f.write(g + "/realisations/interaction_relative", per_realisation<double>(pops, reports, [](P, R r) { return r.interaction_relative; }), "1");
+  f.write(g + "/realisations/interaction_rms_relative",
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.rms_relative; }), "1");
+  f.write(g + "/realisations/interaction_max_relative",
+          per_realisation<double>(pops, reports, [](P, R r) { return r.interaction_max_relative; }), "1");
+  f.write(g + "/realisations/overlapping_pairs", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.overlapping_pairs; }), "1");
+  f.write(g + "/realisations/independence_holds", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.independence_holds; }), "1");
+  f.write(g + "/realisations/interacting_iterations",
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_iterations; }), "1");
+  f.write(g + "/realisations/interacting_converged",
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_converged; }), "1");
+}
+
+void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Population> pops, bool contact, bool sampled) {
+  f.write(g + "/summits/height_m", concatenated(pops, [](const Population& p) { return &p.height_m; }), "m");
+  f.write(g + "/summits/x_m", concatenated(pops, [](const Population& p) { return &p.x_m; }), "m");
+  f.write(g + "/summits/y_m", concatenated(pops, [](const Population& p) { return &p.y_m; }), "m");
+  f.write(g + "/summits/drive_phase_rad", concatenated(pops, [](const Population& p) { return &p.drive_phase_rad; }), "rad");
+  f.write(g + "/summits/normal_load_n", concatenated(pops, [](const Population& p) { return &p.load_n; }), "N");
+  if (sampled)
+    f.write(g + "/summits/sampled_stiffness_n_per_m",
+            concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }), "N/m");
+  if (!contact) return;
+  f.write(g + "/summits/interference_m", concatenated(pops, [](const Population& p) { return &p.contact->interference_m; }), "m");
+  f.write(g + "/summits/patch_radius_m", concatenated(pops, [](const Population& p) { return &p.contact->patch_radius_m; }), "m");
+  f.write(g + "/summits/extra_displacement_m",
+          concatenated(pops, [](const Population& p) { return &p.contact->interaction.extra_displacement_m; }), "m");
+  f.write(g + "/summits/interaction_relative",
+          concatenated(pops, [](const Population& p) { return &p.contact->interaction.relative; }), "1");
+}
+
+void write_asperities(Hdf5Writer& f, const std::string& g, std::span<const Population> pops,
+                      std::span<const ValidityReport> reports) {
+  std::vector<std::int64_t> summit_index, cannot_slip, near_length;
+  std::vector<double> deflection;
+  for (std::size_t j = 0; j < pops.size(); ++j) {
+    for (std::size_t i = 0; i < pops[j].asperities.size(); ++i) {
+      summit_index.push_back(i < pops[j].summit_of_asperity.size() ? static_cast<std::int64_t>(pops[j].summit_of_asperity[i])
+                                                                   : static_cast<std::int64_t>(i));
+      cannot_slip.push_back(reports[j].cannot_slip_model1[i]);
+      near_length.push_back(reports[j].near_length_model2[i]);
+      deflection.push_back(reports[j].static_deflection_over_length[i]);
+    }
+  }
+  f.write(g + "/asperities/summit_index", summit_index, "index");
+  f.write(g + "/asperities/stiffness_n_per_m", asperity_column(pops, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
+  f.write(g + "/asperities/mass_kg", asperity_column(pops, [](const Asperity& a) { return a.mass_kg; }), "kg");
+  f.write(g + "/asperities/normal_load_n", asperity_column(pops, [](const Asperity& a) { return a.normal_load_n; }), "N");
+  f.write(g + "/asperities/height_m", asperity_column(pops, [](const Asperity& a) { return a.height_m; }), "m");
+  f.write(g + "/asperities/element_length_m", asperity_column(pops, [](const Asperity& a) { return a.element.length_m; }), "m");
+  f.write(g + "/asperities/element_width_m", asperity_column(pops, [](const Asperity& a) { return a.element.width_m; }), "m");
+  f.write(g + "/asperities/drive_phase_rad", asperity_column(pops, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
+  f.write(g + "/asperities/cannot_slip_model1", cannot_slip, "1");
+  f.write(g + "/asperities/static_deflection_over_length", deflection, "1");
+  f.write(g + "/asperities/near_length_model2", near_length, "1");
+}
+
+}  // namespace
+
+std::string joined_warnings(const ValidityReport& report) {
+  std::string out;
+  for (const auto* list : {&report.contact_warnings, &report.model1_warnings, &report.model2_warnings})
+    for (const std::string& w : *list) out += (out.empty() ? "" : "; ") + w;
+  return out;
+}
+
+void write_populations(Hdf5Writer& file, const std::string& group, std::span<const Population> populations,
+                       std::span<const ValidityReport> reports) {
+  if (populations.size() != reports.size())
+    throw Error("write_populations: " + std::to_string(populations.size()) + " populations but " +
+                std::to_string(reports.size()) + " reports");
+  const std::string g = prefix_of(group);
+  // Stiffnesses were drawn when every realisation has one per summit and some have summits.
+  bool contact = !populations.empty(), sampled = true, any_summit = false;
+  for (const Population& p : populations) {
+    contact = contact && p.contact.has_value();
+    sampled = sampled && p.sampled_stiffness_n_per_m.size() == p.height_m.size();
+    any_summit = any_summit || !p.height_m.empty();
+  }
+  sampled = sampled && any_summit;
+  write_realisations(file, g, populations, reports, contact);
+  write_summits(file, g, populations, contact, sampled);
+  write_asperities(file, g, populations, reports);
+}
+
+}  // namespace stengmc

@@ -1,0 +1,209 @@
+// Reading a random surface (README: surface files). Every rule that needs data another
+// table provides is checked here, so a surface that reads is a surface that samples.
+#include <cmath>
+#include <string>
+
+#include "core/format.hpp"
+#include "surface/random_surface.hpp"
+
+namespace stengmc {
+
+double RandomSurface::mean_summit_count() const {
+  return count_rule == CountRule::poisson ? summit_density_per_m2 * nominal_area_m2 : static_cast<double>(summit_count);
+}
+
+namespace {
+
+TomlTable required_table(TomlTable& root, std::string_view key, const std::string& what) {
+  auto table = root.table(key);
+  if (!table) root.fail(key, "is missing: " + what);
+  return *table;
+}
+
+void read_summits(TomlTable& root, RandomSurface& s) {
+  TomlTable t = required_table(root, "summits", "a [summits] table with count_rule = \"poisson\" or \"fixed\" is required");
+  const std::string positions = t.choice("positions", "uniform", {"uniform", "given"});
+  s.position_rule = positions == "uniform" ? PositionRule::uniform : PositionRule::given;
+  const std::string rule = t.choice("count_rule", s.position_rule == PositionRule::given ? "fixed" : "poisson",
+                                    {"poisson", "fixed"});
+  s.count_rule = rule == "poisson" ? CountRule::poisson : CountRule::fixed;
+  const double side = std::sqrt(s.nominal_area_m2);
+  if (s.position_rule == PositionRule::given) {
+    if (s.count_rule != CountRule::fixed)
+      t.fail("count_rule", "= \"poisson\" cannot be combined with positions = \"given\": the list fixes the count");
+    s.given_x_m = t.number_list("x_m");
+    s.given_y_m = t.number_list("y_m");
+    if (s.given_x_m.empty()) t.fail("x_m", "is missing or empty: positions = \"given\" needs x_m = [...] and y_m = [...]");
+    if (s.given_x_m.size() != s.given_y_m.size())
+      t.fail("y_m", "has " + std::to_string(s.given_y_m.size()) + " entries but x_m has " +
+                        std::to_string(s.given_x_m.size()) + ": one (x, y) per summit");
+    for (std::size_t i = 0; i < s.given_x_m.size(); ++i)
+      if (s.given_x_m[i] < 0.0 || s.given_x_m[i] > side || s.given_y_m[i] < 0.0 || s.given_y_m[i] > side)
+        t.fail("x_m", "entry " + std::to_string(i + 1) + " (" + format_number(s.given_x_m[i]) + ", " +
+                          format_number(s.given_y_m[i]) + ") m lies outside the nominal square [0, " + format_number(side) +
+                          "] m (side sqrt(nominal_area_m2))");
+    s.summit_count = s.given_x_m.size();
+    if (t.has("count") && t.integer("count", 0, 1) != static_cast<long long>(s.summit_count))
+      t.fail("count", "disagrees with the " + std::to_string(s.summit_count) + " given positions; leave it out");
+    return;
+  }
+  if (s.count_rule == CountRule::poisson) {
+    if (!t.has("density_per_m2")) t.fail("density_per_m2", "is missing: count_rule = \"poisson\" needs the summit density [1/m^2]");
+    s.summit_density_per_m2 = t.positive("density_per_m2", 0.0);
+  } else {
+    if (!t.has("count")) t.fail("count", "is missing: count_rule = \"fixed\" needs the number of summits");
+    s.summit_count = static_cast<std::size_t>(t.integer("count", 0, 1));
+  }
+  if (s.mean_summit_count() > MAX_MEAN_SUMMITS)
+    t.fail(s.count_rule == CountRule::poisson ? "density_per_m2" : "count",
+           "gives " + format_number(s.mean_summit_count()) + " summits per realisation, above the limit of " +
+               format_number(MAX_MEAN_SUMMITS) + "; use a smaller nominal_area_m2");
+}
+
+void read_materials(TomlTable& root, RandomSurface& s) {
+  auto t = root.table("materials");
+  if (!t) return;
+  auto body = [&](std::string_view key) {
+    auto b = t->table(key);
+    if (!b) t->fail(key, "is missing: give { youngs_modulus_pa = ..., poisson_ratio = ... }");
+    if (!b->has("youngs_modulus_pa")) b->fail("youngs_modulus_pa", "is missing (Young's modulus [Pa])");
+    if (!b->has("poisson_ratio")) b->fail("poisson_ratio", "is missing (Poisson's ratio [-])");
+    ElasticBody e{b->positive("youngs_modulus_pa", 0.0), b->number("poisson_ratio", 0.0)};
+    if (!(e.poisson_ratio > -1.0 && e.poisson_ratio < 0.5))
+      b->fail("poisson_ratio", "= " + format_number(e.poisson_ratio) + " must satisfy -1 < nu < 0.5");
+    return e;
+  };
+  ContactMaterials m;
+  m.body_1 = body("body_1");
+  m.body_2 = body("body_2");
+  if (!t->has("summit_radius_m")) t->fail("summit_radius_m", "is missing: the summit radius R_s [m] is required");
+  m.summit_radius_m = t->positive("summit_radius_m", 0.0);
+  s.materials = m;
+}
+
+//! `what` needs material data: say which rule asked for it.
+void require_materials(const RandomSurface& s, TomlTable& t, std::string_view key, const std::string& rule) {
+  if (!s.materials)
+    t.fail(key, "= \"" + rule + "\" needs a [materials] table (body_1, body_2 with youngs_modulus_pa and poisson_ratio, "
+                                "and summit_radius_m)");
+}
+
+void read_stiffness(TomlTable& root, RandomSurface& s, const std::filesystem::path& base_dir) {
+  TomlTable t = required_table(root, "stiffness", "a [stiffness] table with rule = \"sampled\" (and a distribution) or \"mindlin\"");
+  const std::string rule = t.choice("rule", "sampled", {"sampled", "mindlin"});
+  if (rule == "mindlin") {
+    s.stiffness_rule = StiffnessRule::mindlin;
+    require_materials(s, t, "rule", rule);
+    if (t.has("kind")) t.fail("kind", "is not used with rule = \"mindlin\" (k = 8 G* a): remove it or use rule = \"sampled\"");
+    return;
+  }
+  s.stiffness_rule = StiffnessRule::sampled;
+  s.stiffness = Distribution::from_toml(t, base_dir);
+  const double lower = s.stiffness->lower();
+  if (lower < 0.0 || (s.stiffness->kind() == Distribution::Kind::fixed && lower <= 0.0))
+    t.fail("kind", "can draw stiffness " + format_number(lower) + " N/m: stiffnesses must be > 0 (truncate with min = ...)");
+}
+
+void read_load(TomlTable& root, RandomSurface& s) {
+  TomlTable t = required_table(root, "load", "a [load] table with rule = \"fixed\" (normal_load_n) or \"hertz\" (nominal_load_n)");
+  const std::string rule = t.choice("rule", "fixed", {"fixed", "hertz"});
+  if (rule == "fixed") {
+    s.load_rule = LoadRule::fixed;
+    if (t.has("nominal_load_n")) t.fail("nominal_load_n", "is used by rule = \"hertz\" only; rule = \"fixed\" takes normal_load_n");
+    s.normal_load_n = t.positive("normal_load_n", s.normal_load_n);
+    return;
+  }
+  s.load_rule = LoadRule::hertz;
+  require_materials(s, t, "rule", rule);
+  if (t.has("normal_load_n")) t.fail("normal_load_n", "is used by rule = \"fixed\" only; rule = \"hertz\" takes nominal_load_n");
+  if (!t.has("nominal_load_n")) t.fail("nominal_load_n", "is missing: the total load W [N] the flat presses with");
+  s.nominal_load_n = t.number("nominal_load_n", 0.0);
+  if (!(s.nominal_load_n > 0.0) || !std::isfinite(s.nominal_load_n))
+    t.fail("nominal_load_n", "= " + format_number(s.nominal_load_n) +
+                                 ": no separation can carry it; an adhesionless flat carries only a finite load W > 0");
+}
+
+void read_interaction(TomlTable& root, RandomSurface& s) {
+  auto t = root.table("interaction");
+  if (!t) return;
+  const std::string mode = t->choice("mode", "report", {"report", "apply"});
+  s.interaction_mode = mode == "report" ? InteractionMode::report : InteractionMode::apply;
+  if (!s.materials) t->fail("mode", "needs a [materials] table: the interaction is computed from E* and the patch loads");
+  if (s.interaction_mode == InteractionMode::apply && s.load_rule != LoadRule::hertz)
+    t->fail("mode", "= \"apply\" needs [load] rule = \"hertz\": under a fixed load per asperity nothing can redistribute");
+  s.interaction.localisation_radius_m = t->non_negative("localisation_radius_m", s.interaction.localisation_radius_m);
+  s.interaction.localisation_spacings = t->positive("localisation_spacings", s.interaction.localisation_spacings);
+  const std::string kernel = t->choice("kernel", "point_load", {"point_load", "hertz_pressure"});
+  s.interaction.kernel = kernel == "point_load" ? InteractionKernel::point_load : InteractionKernel::hertz_pressure;
+}
+
+void read_element(TomlTable& root, RandomSurface& s) {
+  auto t = root.table("element");
+  if (!t) return;  // Table 2 defaults, fixed geometry
+  StengElement& e = s.element;
+  e.charge_density_c_per_m2 = t->number("charge_density_c_per_m2", e.charge_density_c_per_m2);
+  e.effective_thickness_m = t->positive("effective_thickness_m", e.effective_thickness_m);
+  const std::string geometry = t->choice("geometry", "fixed", {"fixed", "patch"});
+  s.geometry_rule = geometry == "fixed" ? GeometryRule::fixed : GeometryRule::patch;
+  if (s.geometry_rule == GeometryRule::patch) {
+    require_materials(s, *t, "geometry", geometry);
+    for (const char* key : {"length_m", "width_m"})
+      if (t->has(key)) t->fail(key, "is set by geometry = \"patch\" (l = w = sqrt(pi) a); remove it or use geometry = \"fixed\"");
+    return;
+  }
+  e.length_m = t->positive("length_m", e.length_m);
+  e.width_m = t->positive("width_m", e.width_m);
+}
+
+void read_mass(TomlTable& root, RandomSurface& s) {
+  auto t = root.table("mass");
+  if (!t) return;
+  const std::string rule = t->choice("rule", "fixed", {"fixed", "density"});
+  if (rule == "fixed") {
+    s.mass_rule = MassRule::fixed;
+    s.mass_kg = t->positive("mass_kg", s.mass_kg);
+    return;
+  }
+  s.mass_rule = MassRule::density;
+  if (!t->has("density_kg_per_m3")) t->fail("density_kg_per_m3", "is missing: rule = \"density\" needs rho [kg/m^3]");
+  s.density_kg_per_m3 = t->positive("density_kg_per_m3", 0.0);
+  if (s.heights.lower() < 0.0)
+    t->fail("rule", "= \"density\" uses m = rho l w h with h the summit height, but [heights] can draw " +
+                        format_number(s.heights.lower()) + " m: truncate the heights at min = 0 or use rule = \"fixed\"");
+}
+
+void read_drive(TomlTable& root, RandomSurface& s) {
+  auto t = root.table("drive");
+  if (!t) return;
+  const std::string rule = t->choice("phase", "fixed", {"fixed", "uniform"});
+  s.phase_rule = rule == "fixed" ? PhaseRule::fixed : PhaseRule::uniform;
+  if (s.phase_rule == PhaseRule::fixed) s.phase_rad = t->number("phase_rad", s.phase_rad);
+  else if (t->has("phase_rad")) t->fail("phase_rad", "is not used with phase = \"uniform\"");
+}
+
+}  // namespace
+
+RandomSurface read_random_surface(TomlTable& root, const std::filesystem::path& base_dir) {
+  RandomSurface s;
+  s.title = root.string("title", "");
+  if (!root.has("nominal_area_m2")) root.fail("nominal_area_m2", "is missing: the nominal contact area A0 [m^2] is required");
+  s.nominal_area_m2 = root.positive("nominal_area_m2", 0.0);
+  read_summits(root, s);
+  TomlTable heights = required_table(root, "heights", "a [heights] table with the summit-height distribution [m]");
+  s.heights = Distribution::from_toml(heights, base_dir);
+  read_materials(root, s);
+  read_stiffness(root, s, base_dir);
+  if (auto correlation = root.table("correlation")) {
+    if (s.stiffness_rule != StiffnessRule::sampled)
+      correlation->fail("rho", "needs [stiffness] rule = \"sampled\": under \"mindlin\" the stiffness already follows the height");
+    s.correlation = GaussianCopula::from_toml(*correlation);
+  }
+  read_load(root, s);
+  read_interaction(root, s);
+  read_element(root, s);
+  read_mass(root, s);
+  read_drive(root, s);
+  return s;
+}
+
+}  // namespace stengmc

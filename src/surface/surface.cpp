@@ -1,0 +1,33 @@
+#include "surface/surface.hpp"
+
+#include "surface/fixed_population.hpp"
+
+namespace stengmc {
+
+Surface Surface::from_toml(TomlTable& table, const std::filesystem::path& base_dir) {
+  const std::string kind = table.choice("kind", "list", {"list", "random"});
+  if (kind == "list") return fixed_list(read_fixed_population(table));
+  return random(read_random_surface(table, base_dir));
+}
+
+Surface Surface::fixed_list(std::vector<Asperity> asperities) {
+  Surface s;
+  s.list_ = std::move(asperities);
+  return s;
+}
+
+Surface Surface::random(RandomSurface surface) {
+  Surface s;
+  s.random_ = std::move(surface);
+  return s;
+}
+
+Population Surface::sample(std::uint64_t seed, std::uint64_t realisation) const {
+  if (random_) return sample_population(*random_, seed, realisation);
+  Population p;
+  p.realisation = realisation;
+  p.asperities = list_;
+  return p;
+}
+
+}  // namespace stengmc
