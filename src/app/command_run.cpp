@@ -15,16 +15,22 @@ namespace {
 struct RunOptions {
   std::string study_file;
   std::string out;
+  std::uint64_t realisation = 0;
   bool figures = false;
 };
 
 void run(const RunOptions& options) {
-  const Study study = read_study(options.study_file);
+  const Study study = read_study(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output_file : options.out;
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
               std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
               study.sample_rate_hz);
   if (!study.title.empty()) std::printf("  %s\n", study.title.c_str());
+  if (study.surface->random_surface())
+    std::printf("  realisation %llu of %s (seed %llu): %zu summits drawn, %zu in contact\n",
+                static_cast<unsigned long long>(study.realisation),
+                study.surface_file.empty() ? "the inline surface" : study.surface_file.c_str(),
+                static_cast<unsigned long long>(study.seed), study.population.height_m.size(), study.asperities.size());
   const RunResult result = run_study(study);
   const RunSummary summary = summarise(study, result);
   write_run_file(out, study, result, summary);
@@ -45,6 +51,9 @@ void add_run_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
+  command->add_option("-r,--realisation", options->realisation,
+                      "Which realisation of a random surface to run (depends on the study's seed and this id only)")
+      ->capture_default_str();
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
   command->callback([options] { run(*options); });
 }

@@ -65,7 +65,7 @@ void run(const SpectrumOptions& options) {
     throw InputError(options.input + ": " + e.what());
   }
   Hdf5Writer file(options.out);
-  write_provenance(file, {"stengmc-spectrum", options.input, "", 0});
+  write_provenance(file, {"stengmc-spectrum", options.input, "", 0, "", ""});
   file.attribute("/", "settings_file", options.settings_file);
   write_spectra(file, result, settings);
   file.commit();

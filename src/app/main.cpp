@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   stengmc::app::add_run_command(app);
   stengmc::app::add_circuit_command(app);
   stengmc::app::add_spectrum_command(app);
+  stengmc::app::add_surface_command(app);
   stengmc::app::add_plot_command(app);
   try {
     app.parse(argc, argv);

@@ -68,7 +68,7 @@ void write_realisations(Hdf5Writer& f, const std::string& g, std::span<const Pop
   f.write(g + "/realisations/real_area_m2", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).real_area_m2; }), "m^2");
   f.write(g + "/realisations/contact_density", per_realisation<double>(pops, reports, [](P, R r) { return r.contact_density; }), "1");
   f.write(g + "/realisations/screening_estimate", per_realisation<double>(pops, reports, [](P, R r) { return r.screening_estimate; }), "1");
-  f.write(g + "/realisations/interaction_relative", per_realisation<double>(pops, reports, [](P, R r) { return r.interaction_relative; }), "1");
+  f.write(g + "/realisations/load_redistribution", per_realisation<double>(pops, reports, [](P, R r) { return r.load_redistribution; }), "1");
   f.write(g + "/realisations/interaction_rms_relative",
           per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.rms_relative; }), "1");
   f.write(g + "/realisations/interaction_max_relative",

@@ -9,7 +9,8 @@
 //!     near_length_model2_count, warnings (text, "; "-separated, "" when none);
 //!     summit_offset, asperity_offset (K + 1 entries);
 //!     with material data also: separation_m, total_load_n, real_area_m2, contact_density,
-//!     screening_estimate, interaction_relative (non-uniform rms / delta),
+//!     screening_estimate, load_redistribution (fraction of the load the
+//!     interaction moves between spots; SpotInteraction::load_redistribution),
 //!     interaction_rms_relative, interaction_max_relative, overlapping_pairs,
 //!     independence_holds (0/1), interacting_iterations, interacting_converged (0/1)
 //!   G/summits/       every sampled summit: height_m, x_m, y_m, drive_phase_rad, normal_load_n,

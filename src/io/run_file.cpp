@@ -5,6 +5,7 @@
 
 #include "core/build_info.hpp"
 #include "core/column.hpp"
+#include "io/population_file.hpp"
 #include "io/spectrum_file.hpp"
 
 namespace stengmc {
@@ -71,6 +72,8 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
   file.attribute("/", "seed", static_cast<std::int64_t>(provenance.seed));
   file.attribute("/", "input_file", provenance.input_file);
   file.attribute("/", "input_text", provenance.input_text);
+  file.attribute("/", "surface_file", provenance.surface_file);
+  file.attribute("/", "surface_text", provenance.surface_text);
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
@@ -93,9 +96,9 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
 
 void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary) {
   Hdf5Writer file(path);
-  write_provenance(file, {"stengmc-run", study.file, study.text, study.seed});
+  write_provenance(file, {"stengmc-run", study.file, study.text, study.seed, study.surface_file, study.surface_text});
   file.attribute("/", "title", study.title);
-  file.attribute("/", "surface_file", study.surface_file);
+  file.attribute("/", "realisation", static_cast<std::int64_t>(study.realisation));
   file.attribute("/", "domain_policy", domain_policy_name(study.domain_policy));
   file.attribute("/", "valid", static_cast<std::int64_t>(result.valid ? 1 : 0));
   file.attribute("/", "duration_s", study.duration_s);
@@ -142,6 +145,8 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.attribute("/circuit", "final_charge_c", summary.final_charge_c);
   write_events(file, result);
   if (result.spectra) write_spectra(file, *result.spectra, *study.spectrum);
+  // The realisation's population and its validity report, same layout as `stengmc surface`.
+  write_populations(file, "/surface", std::span(&study.population, 1), std::span(&result.validity, 1));
   file.commit();
 }
 

@@ -17,10 +17,12 @@ inline constexpr std::int64_t RUN_FILE_FORMAT_VERSION = 1;
 
 //! Root attributes every stengmc file carries: what it is and where it came from.
 struct Provenance {
-  std::string file_type;    //!< "stengmc-run" or "stengmc-circuit"
+  std::string file_type;    //!< "stengmc-run", "stengmc-circuit", "stengmc-spectrum", "stengmc-surface"
   std::string input_file;   //!< the study (or displacement file) it was made from
   std::string input_text;   //!< that study's text, verbatim ("" for binary inputs)
   std::uint64_t seed = 0;   //!< master seed
+  std::string surface_file; //!< the surface file a study drew from ("" if inline or none)
+  std::string surface_text; //!< that file's text, verbatim
 };
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);

@@ -77,7 +77,8 @@ void read_surface(TomlTable& root, Study& study) {
     if (surface->has(inline_key))
       surface->fail("file", "cannot be combined with an inline surface ([surface] " + std::string(inline_key) + "): choose one");
   const std::string name = surface->string("file", "");
-  const std::filesystem::path path = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name;
+  const std::filesystem::path path =
+      (std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name).lexically_normal();
   if (!std::filesystem::exists(path))
     surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
   auto document = TomlDocument::from_file(path.string());

@@ -7,6 +7,7 @@
 #include "core/column.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace stengmc {
 
@@ -25,12 +26,20 @@ void note_unresolvable_lines(SpectralResult& result, const SpectrumSettings& set
   const double lobe_bins = settings.window == WindowKind::rectangular ? 1.0 : settings.window == WindowKind::hann ? 2.0 : 4.0;
   const double lobe_hz = lobe_bins * result.voltage.resolution_hz;
   const auto& f = result.expected_frequency_hz;
+  std::vector<std::string> pairs;
   for (std::size_t i = 0; i < f.size(); ++i)
     for (std::size_t j = i + 1; j < f.size(); ++j)
       if (result.sliding[i] && result.sliding[j] && std::abs(f[i] - f[j]) < lobe_hz)
-        result.notes.push_back("asperities " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + ": lines " +
-                               std::to_string(std::abs(f[i] - f[j])) + " Hz apart, inside the window's main lobe (" +
-                               std::to_string(lobe_hz) + " Hz): the FFT cannot resolve them; prefer the ESPRIT result");
+        pairs.push_back(std::to_string(i + 1) + " and " + std::to_string(j + 1) + " (" +
+                        format_number(std::abs(f[i] - f[j])) + " Hz apart)");
+  if (pairs.empty()) return;
+  // A rough surface can have dozens of such pairs: one note, the first few named.
+  constexpr std::size_t NAMED = 4;
+  std::string list;
+  for (std::size_t k = 0; k < std::min(pairs.size(), NAMED); ++k) list += (k ? ", " : "") + pairs[k];
+  if (pairs.size() > NAMED) list += " and " + std::to_string(pairs.size() - NAMED) + " more pairs";
+  result.notes.push_back("asperities " + list + ": lines inside the window's main lobe (" + format_number(lobe_hz) +
+                         " Hz): the FFT cannot resolve them; prefer the ESPRIT result");
 }
 
 //! Sample rate of a uniform grid; spectra (MODEL.md §3) assume one.

@@ -8,6 +8,7 @@
 #include "circuit/circuit_solver.hpp"
 #include "io/study.hpp"
 #include "pipeline/analyse_spectra.hpp"
+#include "surface/validity.hpp"
 #include "tribology/events.hpp"
 #include "tribology/trajectory.hpp"
 
@@ -22,6 +23,7 @@ struct RunResult {
   std::size_t circuit_samples = 0;                   //!< length of that prefix (all samples when valid)
   bool valid = true;                                 //!< false when some x reached l (policy `flag`)
   std::vector<std::string> notes;                    //!< plain-language warnings for the user
+  ValidityReport validity;                           //!< the population's validity report (MODEL.md §4)
   double tribology_seconds = 0.0;                    //!< wall time of the tribology [s]
   double circuit_seconds = 0.0;                      //!< wall time of the circuit [s]
   std::optional<SpectralResult> spectra;             //!< when the study has [spectrum]

@@ -83,6 +83,8 @@ class Distribution {
   [[nodiscard]] double lower() const { return min_; }
   [[nodiscard]] double upper() const { return max_; }
   [[nodiscard]] bool truncated() const { return truncated_; }
+  //! `fixed`: its values, sorted (each drawn with probability 1/n); empty otherwise.
+  [[nodiscard]] const std::vector<double>& fixed_values() const { return values_; }
 
  private:
   Distribution(Kind kind, double a, double b, double min, double max);

@@ -34,7 +34,13 @@ struct SpotInteraction {
   double nominal_pressure_pa = 0.0;          //!< p = sum N_i / A0 [Pa]
   double max_relative = 0.0;                 //!< max over spots of extra_i / delta_i [-]
   double rms_relative = 0.0;                 //!< rms over spots of extra_i / delta_i: the "interaction magnitude" [-]
-  double nonuniform_rms_relative = 0.0;      //!< rms of (extra_i - mean extra) / delta_i: the part a fixed W cannot absorb into d [-]
+  //! The interaction magnitude the validity report uses [-]: the fraction of the total load
+  //! the interaction moves between spots, to first order,
+  //!   sum_i s_i |u_i - u_bar| / sum_i N_i,  s_i = dN_i/d delta_i = 2 E* a_i (Hertz),
+  //! where u_bar = sum s_i u_i / sum s_i is the uniform part a fixed W absorbs into the
+  //! separation. Unlike extra_i / delta_i it stays bounded for barely touching spots
+  //! (s_i -> 0), so one grazing summit cannot dominate it.
+  double load_redistribution = 0.0;
   std::size_t contact_count = 0;             //!< spots with load > 0
   std::size_t overlapping_pairs = 0;         //!< spot pairs closer than a_i + a_j (patches would merge) [-]
 };
@@ -56,16 +62,17 @@ struct InteractingContact {
   HertzContact contact;          //!< loads with the interaction applied (heights lowered by the extra displacement)
   SpotInteraction interaction;   //!< interaction of the final loads
   int iterations = 0;            //!< fixed-point iterations done
-  bool converged = false;        //!< max |N_i change| / W < tolerance reached
-  double last_change = 0.0;      //!< max |N_i change| / W of the last iteration [-]
+  bool converged = false;        //!< the residual's load error fell below tolerance W
+  double last_change = 0.0;      //!< max_i 2 E* a_i |G(u)_i - u_i| / W at the last iterate: the load error of the fixed point [-]
 };
 
-//! Interacting mode: fixed point z_i^eff = z_i - u_i(N), N = Hertz solve at load W.
-//! The uniform far-field term only moves d; the near field redistributes the loads.
+//! Interacting mode: fixed point z_i^eff = z_i - u_i(N), N = Hertz solve at load W, by
+//! Anderson-accelerated iteration on u (see the .cpp). The uniform far-field term only moves d; the
+//! near field redistributes the loads.
 InteractingContact solve_interacting_contact(const std::vector<double>& heights_m, const std::vector<double>& x_m,
                                              const std::vector<double>& y_m, double summit_radius_m,
                                              double effective_modulus_pa, double nominal_load_n,
                                              double nominal_area_m2, const InteractionSettings& settings = {},
-                                             int max_iterations = 100, double tolerance = 1e-10);
+                                             int max_iterations = 200, double tolerance = 1e-10);
 
 }  // namespace stengmc

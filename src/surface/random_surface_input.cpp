@@ -99,8 +99,12 @@ void read_stiffness(TomlTable& root, RandomSurface& s, const std::filesystem::pa
   }
   s.stiffness_rule = StiffnessRule::sampled;
   s.stiffness = Distribution::from_toml(t, base_dir);
+  // Laws open at 0 (lognormal, gamma, Weibull) never draw 0; the others can draw their lower end.
   const double lower = s.stiffness->lower();
-  if (lower < 0.0 || (s.stiffness->kind() == Distribution::Kind::fixed && lower <= 0.0))
+  const auto kind = s.stiffness->kind();
+  const bool open_at_zero = kind == Distribution::Kind::lognormal || kind == Distribution::Kind::gamma ||
+                            kind == Distribution::Kind::weibull;
+  if (lower < 0.0 || (!open_at_zero && lower <= 0.0))
     t.fail("kind", "can draw stiffness " + format_number(lower) + " N/m: stiffnesses must be > 0 (truncate with min = ...)");
 }
 

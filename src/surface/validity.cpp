@@ -18,16 +18,18 @@ void assess_contact(const PopulationContact& c, const ValidityThresholds& th, Va
   r.contact_known = true;
   r.contact_density = c.contact_density;
   r.screening_estimate = c.screening_estimate;
-  r.interaction_relative = c.interaction.nonuniform_rms_relative;
+  r.load_redistribution = c.interaction.load_redistribution;
   r.interaction_max_relative = c.interaction.max_relative;
   r.overlapping_pairs = c.interaction.overlapping_pairs;
   for (double a : c.patch_radius_m) r.max_patch_over_radius = std::max(r.max_patch_over_radius, a / c.summit_radius_m);
-  r.independence_holds = r.interaction_relative < th.interaction_relative;
+  r.independence_holds = r.load_redistribution < th.load_redistribution;
+  const bool applied = c.interacting_iterations > 0;
   if (!r.independence_holds)
-    r.contact_warnings.push_back("spots are not independent: the non-uniform interaction is " +
-                                 percent(r.interaction_relative) + " of the interference (threshold " +
-                                 percent(th.interaction_relative) + ", contact density A_r/A0 = " +
-                                 percent(r.contact_density) + "); consider [interaction] mode = \"apply\"");
+    r.contact_warnings.push_back(
+        "spots are not independent: their interaction moves " + percent(r.load_redistribution) +
+        " of the load between spots (threshold " + percent(th.load_redistribution) + ", contact density A_r/A0 = " +
+        percent(r.contact_density) + ")" +
+        (applied ? "; the loads include it (interacting mode)" : "; consider [interaction] mode = \"apply\""));
   if (!c.interacting_converged)
     r.contact_warnings.push_back("interacting mode did not converge in " + std::to_string(c.interacting_iterations) +
                                  " iterations: the loads are not a fixed point of the interaction");

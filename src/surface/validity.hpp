@@ -13,9 +13,9 @@ namespace stengmc {
 
 //! Where a check turns into a warning (README: validity report).
 struct ValidityThresholds {
-  //! Spots count as independent while the non-uniform part of the interaction (what a
-  //! fixed W cannot absorb into the separation) stays below this fraction of delta [-].
-  double interaction_relative = 0.05;
+  //! Spots count as independent while their interaction would move less than this
+  //! fraction of the load between them (SpotInteraction::load_redistribution) [-].
+  double load_redistribution = 0.05;
   //! Model 2's largest static deflection counts as "near l" from this fraction of l [-].
   double near_length_fraction = 0.9;
   //! Hertz (small strain) is doubtful from this a / R_s [-] (Johnson 1985, §4.2: a << R).
@@ -27,10 +27,10 @@ struct ValidityReport {
   bool contact_known = false;            //!< the population has contact data (material data given)
   double contact_density = 0.0;          //!< A_r / A0 [-]
   double screening_estimate = 0.0;       //!< (4/3 pi)(A_r/A0)^(3/2) [-]
-  double interaction_relative = 0.0;     //!< non-uniform rms of the extra displacement over delta [-]
+  double load_redistribution = 0.0;      //!< fraction of the load the interaction moves between spots [-]
   double interaction_max_relative = 0.0; //!< max extra displacement over delta [-]
   std::size_t overlapping_pairs = 0;     //!< patches that would merge
-  bool independence_holds = true;        //!< interaction_relative below its threshold
+  bool independence_holds = true;        //!< load_redistribution below its threshold
   double max_patch_over_radius = 0.0;    //!< largest a / R_s [-]
 
   std::vector<unsigned char> cannot_slip_model1;   //!< A <= mu_s N / k: never moves under Model 1

@@ -194,7 +194,7 @@ TEST(SpotInteraction, MagnitudeFallsAsSqrtOfContactDensity) {
   const std::size_t n = 2000;
   const double delta = 2e-8, a = std::sqrt(R_S * delta);
   const double load = hertz_load(delta, R_S, E_STAR);
-  std::vector<double> log_density, log_mag, log_nonuniform;
+  std::vector<double> log_density, log_mag, log_redistribution;
   double previous = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= 6; ++k) {
     const double density = 1e-1 * std::pow(10.0, -0.5 * k);  // A_r/A0 from 1e-1 to 1e-4
@@ -209,20 +209,20 @@ TEST(SpotInteraction, MagnitudeFallsAsSqrtOfContactDensity) {
     previous = s.rms_relative;
     log_density.push_back(std::log(density));
     log_mag.push_back(std::log(s.rms_relative));
-    log_nonuniform.push_back(std::log(s.nonuniform_rms_relative));
+    log_redistribution.push_back(std::log(s.load_redistribution));
     const double predicted = 8.0 / (3.0 * pi) * std::sqrt(double(n)) * std::sqrt(density);
     std::printf("A_r/A0 = %.1e: interaction rms %.4f (homogeneous prediction %.4f), max %.3f, "
-                "nonuniform rms %.4f, screening %.2e\n", density, s.rms_relative, predicted, s.max_relative,
-                s.nonuniform_rms_relative, screening_interaction_estimate(density));
+                "load redistribution %.4f, screening %.2e\n", density, s.rms_relative, predicted, s.max_relative,
+                s.load_redistribution, screening_interaction_estimate(density));
   }
   const double slope = fit_line(log_density, log_mag).first;
   RecordProperty("magnitude_slope", std::to_string(slope));
   EXPECT_NEAR(slope, 0.5, 0.05);
-  // The non-uniform part (what a fixed W cannot absorb into d) scales the same way but is
-  // set by the random close pairs, hence the wider band.
-  const double slope_nonuniform = fit_line(log_density, log_nonuniform).first;
-  std::printf("log-log slopes: rms %.4f, nonuniform rms %.4f\n", slope, slope_nonuniform);
-  EXPECT_NEAR(slope_nonuniform, 0.5, 0.1);
+  // The load redistribution (the non-uniform part, which a fixed W cannot absorb into d)
+  // scales the same way but is set by the random close pairs, hence the wider band.
+  const double slope_redistribution = fit_line(log_density, log_redistribution).first;
+  std::printf("log-log slopes: rms %.4f, load redistribution %.4f\n", slope, slope_redistribution);
+  EXPECT_NEAR(slope_redistribution, 0.5, 0.1);
 }
 
 TEST(SpotInteraction, InteractingModeShiftsLoadFromCrowdedSpots) {

@@ -1,0 +1,183 @@
+#include "pipeline/surface_examination.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "core/constants.hpp"
+#include "surface/hertz_contact.hpp"
+
+namespace stengmc {
+
+namespace {
+
+constexpr std::size_t TARGET_POINTS = 400;
+constexpr std::size_t CURVE_POINTS = 200;
+
+std::optional<LoadSeparationCurve> load_separation_curve(const RandomSurface& s, const Population& p) {
+  if (s.load_rule != LoadRule::hertz || !p.contact || p.height_m.empty()) return std::nullopt;
+  LoadSeparationCurve c;
+  c.realisation = p.realisation;
+  c.solved_separation_m = p.contact->separation_m;
+  c.nominal_load_n = s.nominal_load_n;
+  const double top = *std::max_element(p.height_m.begin(), p.height_m.end());
+  // From first touch down to half as far again below the solved separation.
+  const double bottom = c.solved_separation_m - 0.5 * (top - c.solved_separation_m);
+  const double e_star = s.materials->effective_modulus_pa();
+  for (std::size_t i = 0; i < CURVE_POINTS; ++i) {
+    const double d = top - (top - bottom) * static_cast<double>(i) / static_cast<double>(CURVE_POINTS - 1);
+    c.separation_m.push_back(d);
+    c.total_load_n.push_back(hertz_contact_at_separation(p.height_m, s.materials->summit_radius_m, e_star, d).total_load_n);
+  }
+  return c;
+}
+
+//! Mean, standard deviation, minimum and maximum of one number over the realisations.
+struct Spread {
+  double mean = 0.0, std = 0.0, min = 0.0, max = 0.0;
+};
+
+Spread spread(const std::vector<double>& v) {
+  Spread s;
+  if (v.empty()) return s;
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  for (double x : v) s.mean += x;
+  s.mean /= static_cast<double>(v.size());
+  if (v.size() > 1) {
+    for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+    s.std = std::sqrt(s.std / static_cast<double>(v.size() - 1));
+  }
+  return s;
+}
+
+//! Empirical quantile (linear interpolation between order statistics, Hyndman & Fan type 7).
+double quantile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double h = p * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (h - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+std::vector<double> over_realisations(const SurfaceExamination& e,
+                                      const std::function<double(const Population&, const ValidityReport&)>& f) {
+  std::vector<double> out;
+  for (std::size_t j = 0; j < e.populations.size(); ++j) out.push_back(f(e.populations[j], e.reports[j]));
+  return out;
+}
+
+std::vector<double> pooled(const SurfaceExamination& e, const std::function<double(const Asperity&)>& f) {
+  std::vector<double> out;
+  for (const Population& p : e.populations)
+    for (const Asperity& a : p.asperities) out.push_back(f(a));
+  return out;
+}
+
+}  // namespace
+
+TargetLaw target_law(const Distribution& law) {
+  TargetLaw t;
+  if (law.kind() == Distribution::Kind::fixed) {
+    t.discrete = true;
+    const auto& values = law.fixed_values();
+    const double each = 1.0 / static_cast<double>(values.size());
+    for (double v : values) {
+      if (!t.value.empty() && t.value.back() == v) t.density.back() += each;
+      else t.value.push_back(v), t.density.push_back(each);
+    }
+    return t;
+  }
+  const double lo = std::max(law.lower(), law.quantile(1e-4));
+  const double hi = std::min(law.upper(), law.quantile(1.0 - 1e-4));
+  for (std::size_t i = 0; i < TARGET_POINTS; ++i) {
+    const double x = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(TARGET_POINTS - 1);
+    t.value.push_back(x);
+    t.density.push_back(law.pdf(x));
+  }
+  return t;
+}
+
+SurfaceExamination examine_surface(const Surface& surface, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                                   const Model1Params& model1, const Model2Params& model2, Progress* progress) {
+  SurfaceExamination e;
+  e.seed = seed;
+  for (std::uint64_t r = first; r < first + count; ++r) {
+    e.populations.push_back(surface.sample(seed, r));
+    e.reports.push_back(assess_validity(e.populations.back(), model1, model2));
+    if (progress) progress->advance();
+  }
+  if (const RandomSurface* s = surface.random_surface()) {
+    e.heights_target = target_law(s->heights);
+    if (s->stiffness) e.stiffness_target = target_law(*s->stiffness);
+    if (!e.populations.empty()) e.load_separation = load_separation_curve(*s, e.populations.front());
+  }
+  return e;
+}
+
+std::string format_surface_summary(const SurfaceExamination& e) {
+  std::string out;
+  char line[256];
+  const std::size_t k = e.populations.size();
+  std::snprintf(line, sizeof line, "%zu realisations (seed %llu); over the realisations:\n", k,
+                static_cast<unsigned long long>(e.seed));
+  out += line;
+  std::snprintf(line, sizeof line, "  %-34s %11s %11s %11s %11s\n", "quantity", "mean", "std", "min", "max");
+  out += line;
+  auto row = [&](const char* name, const std::vector<double>& v) {
+    const Spread s = spread(v);
+    std::snprintf(line, sizeof line, "  %-34s %11.4g %11.4g %11.4g %11.4g\n", name, s.mean, s.std, s.min, s.max);
+    out += line;
+  };
+  row("summits drawn", over_realisations(e, [](const Population& p, const ValidityReport&) { return double(p.height_m.size()); }));
+  row("asperities in contact", over_realisations(e, [](const Population& p, const ValidityReport&) { return double(p.asperities.size()); }));
+  row("total load [N]", over_realisations(e, [](const Population& p, const ValidityReport&) {
+        double w = 0.0;
+        for (const Asperity& a : p.asperities) w += a.normal_load_n;
+        return w;
+      }));
+  const bool contact = k > 0 && e.reports.front().contact_known;
+  if (contact) {
+    row("separation d [m]", over_realisations(e, [](const Population& p, const ValidityReport&) { return p.contact->separation_m; }));
+    row("contact density A_r/A0 [-]", over_realisations(e, [](const Population&, const ValidityReport& r) { return r.contact_density; }));
+    row("interaction: load moved [-]",
+        over_realisations(e, [](const Population&, const ValidityReport& r) { return r.load_redistribution; }));
+    row("screening estimate [-]", over_realisations(e, [](const Population&, const ValidityReport& r) { return r.screening_estimate; }));
+  }
+  row("cannot slip, Model 1 (count)", over_realisations(e, [](const Population&, const ValidityReport& r) { return double(r.cannot_slip_count); }));
+  row("near l, Model 2 (count)", over_realisations(e, [](const Population&, const ValidityReport& r) { return double(r.near_length_count); }));
+
+  std::snprintf(line, sizeof line, "pooled over all asperities in contact:\n  %-34s %11s %11s %11s %11s\n", "quantity", "5 %",
+                "median", "95 %", "max");
+  out += line;
+  auto quantiles = [&](const char* name, const std::vector<double>& v) {
+    std::snprintf(line, sizeof line, "  %-34s %11.4g %11.4g %11.4g %11.4g\n", name, quantile(v, 0.05), quantile(v, 0.5),
+                  quantile(v, 0.95), quantile(v, 1.0));
+    out += line;
+  };
+  quantiles("stiffness k [N/m]", pooled(e, [](const Asperity& a) { return a.stiffness_n_per_m; }));
+  quantiles("normal load N [N]", pooled(e, [](const Asperity& a) { return a.normal_load_n; }));
+  quantiles("natural frequency [Hz]",
+            pooled(e, [](const Asperity& a) { return std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI); }));
+
+  std::size_t flagged = 0;
+  const ValidityReport* example = nullptr;
+  for (const ValidityReport& r : e.reports)
+    if (!r.contact_warnings.empty() || !r.model1_warnings.empty() || !r.model2_warnings.empty()) {
+      ++flagged;
+      if (!example) example = &r;
+    }
+  if (flagged == 0) {
+    out += "validity: no warnings\n";
+    return out;
+  }
+  std::snprintf(line, sizeof line, "validity: %zu of %zu realisations have warnings; the first of them:\n", flagged, k);
+  out += line;
+  for (const auto* list : {&example->contact_warnings, &example->model1_warnings, &example->model2_warnings})
+    for (const std::string& w : *list) out += "  WARNING: " + w + "\n";
+  return out;
+}
+
+}  // namespace stengmc
