@@ -162,21 +162,28 @@ std::string format_surface_summary(const SurfaceExamination& e) {
   quantiles("natural frequency [Hz]",
             pooled(e, [](const Asperity& a) { return std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI); }));
 
-  std::size_t flagged = 0;
-  const ValidityReport* example = nullptr;
-  for (const ValidityReport& r : e.reports)
-    if (!r.contact_warnings.empty() || !r.model1_warnings.empty() || !r.model2_warnings.empty()) {
-      ++flagged;
-      if (!example) example = &r;
-    }
-  if (flagged == 0) {
-    out += "validity: no warnings\n";
-    return out;
+  // How many realisations fail each kind of check, then the first failing one's words.
+  const char* kinds[] = {"contact (independence, Hertz range)", "Model 1 (cannot slip)", "Model 2 (x near l)"};
+  auto warnings_of = [](const ValidityReport& r, int kind) -> const std::vector<std::string>& {
+    return kind == 0 ? r.contact_warnings : kind == 1 ? r.model1_warnings : r.model2_warnings;
+  };
+  bool any = false;
+  for (int kind = 0; kind < 3; ++kind) {
+    std::size_t flagged = 0;
+    const ValidityReport* first = nullptr;
+    for (const ValidityReport& r : e.reports)
+      if (!warnings_of(r, kind).empty()) {
+        ++flagged;
+        if (!first) first = &r;
+      }
+    if (flagged == 0) continue;
+    if (!any) out += "validity warnings (realisations affected; the first one's words):\n";
+    any = true;
+    std::snprintf(line, sizeof line, "  %-36s %zu of %zu\n", kinds[kind], flagged, k);
+    out += line;
+    for (const std::string& w : warnings_of(*first, kind)) out += "    WARNING: " + w + "\n";
   }
-  std::snprintf(line, sizeof line, "validity: %zu of %zu realisations have warnings; the first of them:\n", flagged, k);
-  out += line;
-  for (const auto* list : {&example->contact_warnings, &example->model1_warnings, &example->model2_warnings})
-    for (const std::string& w : *list) out += "  WARNING: " + w + "\n";
+  if (!any) out += "validity: no warnings\n";
   return out;
 }
 
