@@ -4,10 +4,13 @@
     plot_run.py RUN.h5 [RUN2.h5 ...]          one multi-panel figure per file
     plot_run.py --compare A.h5 B.h5 --out F.png   voltages of several runs on one axis
 
+`stengmc surface` files (file_type "stengmc-surface") go to plot_surface.py.
+
 Reads only the file layout documented in the README; run with Debian's python3
 (python3-h5py, python3-matplotlib).
 """
 import argparse
+import os
 import sys
 import textwrap
 
@@ -17,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_surface  # noqa: E402  (beside this script)
 
 SUPPORTED_FORMAT = 1
 
@@ -29,6 +35,8 @@ def attribute(node, name, default=""):
 def open_checked(path):
     f = h5py.File(path, "r")
     kind = attribute(f, "file_type")
+    if kind == plot_surface.FILE_TYPE:
+        sys.exit(f"{path}: a `stengmc surface` file has no voltages to compare; plot it without --compare")
     if kind not in ("stengmc-run", "stengmc-circuit", "stengmc-spectrum"):
         sys.exit(f"{path}: not a stengmc output file (file_type = {kind!r})")
     if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
@@ -46,6 +54,11 @@ def labels(f):
 
 
 def plot_run(path):
+    with h5py.File(path, "r") as peek:
+        kind = attribute(peek, "file_type")
+    if kind == plot_surface.FILE_TYPE:
+        plot_surface.plot_surface(path)
+        return
     f = open_checked(path)
     if "time" not in f:  # a `stengmc spectrum` output: spectra only
         plot_spectra(path)

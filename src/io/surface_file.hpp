@@ -5,6 +5,7 @@
 //!   /target/stiffness/{value, density}     discrete law `density` holds probabilities);
 //!                                          stiffness only under rule "sampled"
 //!   /load_separation/{separation_m, total_load_n}  the first realisation's Hertz curve
+//!       (interacting mode: of the summits lowered by the solved interaction)
 //!       (attributes realisation, solved_separation_m, nominal_load_n); load rule "hertz"
 //!   root attributes: provenance (io/run_file.hpp), first_realisation, realisation_count,
 //!       the validity thresholds.

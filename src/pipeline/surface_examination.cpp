@@ -21,14 +21,19 @@ std::optional<LoadSeparationCurve> load_separation_curve(const RandomSurface& s,
   c.realisation = p.realisation;
   c.solved_separation_m = p.contact->separation_m;
   c.nominal_load_n = s.nominal_load_n;
-  const double top = *std::max_element(p.height_m.begin(), p.height_m.end());
+  // In interacting mode the flat meets the summits lowered by the interaction of the
+  // solved loads: that curve passes through the solved point, the independent one would not.
+  std::vector<double> heights = p.height_m;
+  if (s.interaction_mode == InteractionMode::apply)
+    for (std::size_t i = 0; i < heights.size(); ++i) heights[i] -= p.contact->interaction.extra_displacement_m[i];
+  const double top = *std::max_element(heights.begin(), heights.end());
   // From first touch down to half as far again below the solved separation.
   const double bottom = c.solved_separation_m - 0.5 * (top - c.solved_separation_m);
   const double e_star = s.materials->effective_modulus_pa();
   for (std::size_t i = 0; i < CURVE_POINTS; ++i) {
     const double d = top - (top - bottom) * static_cast<double>(i) / static_cast<double>(CURVE_POINTS - 1);
     c.separation_m.push_back(d);
-    c.total_load_n.push_back(hertz_contact_at_separation(p.height_m, s.materials->summit_radius_m, e_star, d).total_load_n);
+    c.total_load_n.push_back(hertz_contact_at_separation(heights, s.materials->summit_radius_m, e_star, d).total_load_n);
   }
   return c;
 }

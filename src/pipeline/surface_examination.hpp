@@ -22,7 +22,8 @@ struct TargetLaw {
   bool discrete = false;        //!< `fixed` laws: `density` holds probabilities
 };
 
-//! Total Hertz load of one realisation against the flat's separation.
+//! Total Hertz load of one realisation against the flat's separation (in interacting mode,
+//! of the summits lowered by the solved interaction).
 struct LoadSeparationCurve {
   std::uint64_t realisation = 0;
   std::vector<double> separation_m;  //!< d, from the highest summit down [m]

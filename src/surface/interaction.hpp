@@ -20,7 +20,10 @@ enum class InteractionKernel {
 struct InteractionSettings {
   double localisation_radius_m = 0.0;   //!< R_loc [m]; 0 = localisation_spacings * sqrt(A0 / n_contact)
   double localisation_spacings = 3.0;   //!< R_loc in mean spot spacings when R_loc is not given [-]
-  InteractionKernel kernel = InteractionKernel::point_load;
+  //! The patch pressure by default: it equals the point load beyond a few patch radii and
+  //! stays finite for overlapping patches, where N / (pi E* r) diverges and a single close
+  //! pair would dominate the interaction.
+  InteractionKernel kernel = InteractionKernel::hertz_pressure;
 };
 
 //! Extra normal surface displacement of every asperity caused by the contacting spots.

@@ -137,7 +137,7 @@ void read_interaction(TomlTable& root, RandomSurface& s) {
     t->fail("mode", "= \"apply\" needs [load] rule = \"hertz\": under a fixed load per asperity nothing can redistribute");
   s.interaction.localisation_radius_m = t->non_negative("localisation_radius_m", s.interaction.localisation_radius_m);
   s.interaction.localisation_spacings = t->positive("localisation_spacings", s.interaction.localisation_spacings);
-  const std::string kernel = t->choice("kernel", "point_load", {"point_load", "hertz_pressure"});
+  const std::string kernel = t->choice("kernel", "hertz_pressure", {"hertz_pressure", "point_load"});
   s.interaction.kernel = kernel == "point_load" ? InteractionKernel::point_load : InteractionKernel::hertz_pressure;
 }
 

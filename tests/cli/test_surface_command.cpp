@@ -100,6 +100,15 @@ TEST(SurfaceCommand, FilesRecordTheirInputs) {
   EXPECT_EQ(r.string_attribute("/", "input_text"), file_text(study));
 }
 
+TEST(SurfaceCommand, FiguresAreRendered) {
+  // --figures renders <out stem>.png with scripts/plot_surface.py (README: stengmc surface).
+  ScratchDir scratch("surface-figures");
+  const auto result = run_cli("surface " + GW + " -k 3 -o " + scratch.file("gw.h5") + " --figures", scratch);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  ASSERT_TRUE(std::filesystem::exists(scratch.file("gw.png"))) << result.output;
+  EXPECT_GT(std::filesystem::file_size(scratch.file("gw.png")), 10'000u);
+}
+
 struct BadSurface {
   const char* name;
   const char* from;  // text of the GW surface to replace

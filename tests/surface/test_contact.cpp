@@ -140,6 +140,7 @@ TEST(SpotInteraction, TwoSpotsGiveBoussinesq) {
   const double r = 40e-6, n1 = 2e-3, n2 = 5e-3;
   const double a1 = 1e-6, a2 = 1.5e-6;
   InteractionSettings settings;
+  settings.kernel = InteractionKernel::point_load;
   settings.localisation_radius_m = 10 * r;
   const auto s = spot_interaction({0.0, r}, {0.0, 0.0}, {n1, n2}, {a1, a2}, {2e-8, 4e-8}, E_STAR,
                                   pi * 25 * r * r, settings);
