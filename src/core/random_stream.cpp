@@ -17,6 +17,7 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::phases: return "phases";
     case StreamKind::noise: return "noise";
     case StreamKind::count: return "count";
+    case StreamKind::bootstrap: return "bootstrap";
   }
   return "unknown";
 }

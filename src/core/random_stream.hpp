@@ -31,6 +31,7 @@ enum class StreamKind : std::uint64_t {
   phases = 4,       //!< drive phases
   noise = 5,        //!< measurement / signal noise
   count = 6,        //!< the (Poisson) number of asperities
+  bootstrap = 7,    //!< bootstrap resampling of ensemble statistics (stats/ensemble_statistics)
 };
 
 //! The kind's name, for messages and file attributes ("heights").
