@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "app/commands.hpp"
@@ -53,7 +54,8 @@ void add_run_command(CLI::App& app) {
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
   command->add_option("-r,--realisation", options->realisation,
                       "Which realisation of a random surface to run (depends on the study's seed and this id only)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
   command->callback([options] { run(*options); });
 }

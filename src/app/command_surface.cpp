@@ -1,9 +1,12 @@
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <memory>
 
 #include "app/commands.hpp"
 #include "app/output_guard.hpp"
+#include "core/error.hpp"
 #include "core/progress.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
@@ -14,6 +17,11 @@
 namespace stengmc::app {
 
 namespace {
+
+// Seeds and realisation ids are stored as int64 attributes and datasets.
+constexpr std::uint64_t MAX_REALISATION_ID = std::numeric_limits<std::int64_t>::max();
+// ~100 bytes per summit across the arrays kept: 2e7 summits is ~2 GB.
+constexpr std::uint64_t MAX_SUMMITS_IN_ONE_FILE = 20'000'000;
 
 struct SurfaceOptions {
   std::string surface_file;
@@ -32,16 +40,30 @@ std::string default_output(const std::string& surface_file) {
 void run(const SurfaceOptions& options) {
   auto document = TomlDocument::from_file(options.surface_file);
   TomlTable root = document->root();
+  if (root.has("duration_s") || root.has("model"))
+    throw InputError(options.surface_file + " is a study file, not a surface file: give the surface file it names in "
+                     "[surface] file = ..., and the study with --study");
   const Surface surface = Surface::from_toml(root, std::filesystem::path(options.surface_file).parent_path());
   document->reject_unknown_keys();
   // The validity checks need the tribology parameters: the study's, else the defaults (Table 1).
-  Model1Params model1;
-  Model2Params model2;
+  ModelParameters models;
+  ModelScope scope;  // without a study: both models, at their defaults
   if (!options.study_file.empty()) {
-    const Study study = read_study(options.study_file);
-    model1 = study.model1;
-    model2 = study.model2;
+    models = read_model_parameters(options.study_file);
+    scope = {models.kind == ModelKind::model1, models.kind == ModelKind::model2};
   }
+  if (options.first > MAX_REALISATION_ID - (options.realisations - 1))
+    throw InputError("--first " + std::to_string(options.first) + " with --realisations " +
+                     std::to_string(options.realisations) + " passes the largest realisation id, " +
+                     std::to_string(MAX_REALISATION_ID));
+  const std::uint64_t total_summits_estimate =
+      static_cast<std::uint64_t>(options.realisations) *
+      static_cast<std::uint64_t>(std::ceil(surface.random_surface() ? surface.random_surface()->mean_summit_count() : 0.0));
+  if (total_summits_estimate > MAX_SUMMITS_IN_ONE_FILE)
+    throw InputError("--realisations " + std::to_string(options.realisations) + " x ~" +
+                     std::to_string(total_summits_estimate / options.realisations) +
+                     " summits would keep ~" + std::to_string(total_summits_estimate) + " summits in memory (limit " +
+                     std::to_string(MAX_SUMMITS_IN_ONE_FILE) + "): draw fewer and continue with --first");
   const std::string out = options.out.empty() ? default_output(options.surface_file) : options.out;
   refuse_overwriting_input(options.surface_file, out);
   std::printf("stengmc surface %s: realisations %llu..%llu, seed %llu; validity against %s\n", options.surface_file.c_str(),
@@ -52,9 +74,13 @@ void run(const SurfaceOptions& options) {
   SurfaceExamination examination;
   {
     Progress progress("sampling", options.realisations);
-    examination = examine_surface(surface, options.seed, options.first, options.realisations, model1, model2, &progress);
+    examination = examine_surface(surface, options.seed, options.first, options.realisations, models.model1,
+                                  models.model2, &progress, scope);
   }
-  write_surface_file(out, {"stengmc-surface", options.surface_file, document->text(), options.seed, "", ""}, examination);
+  write_surface_file(out,
+                     {.file_type = "stengmc-surface", .input_file = options.surface_file, .input_text = document->text(),
+                      .seed = options.seed},
+                     examination);
   std::printf("%s", format_surface_summary(examination).c_str());
   std::printf("wrote %s\n", out.c_str());
   if (options.figures && render_figures(out) != 0)
@@ -73,9 +99,12 @@ void add_surface_command(CLI::App& app) {
   command->add_option("-k,--realisations", options->realisations, "Number of realisations to draw")
       ->capture_default_str()
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));
-  command->add_option("-s,--seed", options->seed, "Master seed (realisation r depends on seed and r only)")->capture_default_str();
+  command->add_option("-s,--seed", options->seed, "Master seed (realisation r depends on seed and r only)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint64_t{0}, MAX_REALISATION_ID));
   command->add_option("--first", options->first, "First realisation id (draw realisations first .. first+K-1)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint64_t{0}, MAX_REALISATION_ID));
   command->add_option("--study", options->study_file,
                       "Take the Model 1 / Model 2 parameters of the validity checks from this study file")
       ->check(CLI::ExistingFile);

@@ -79,6 +79,12 @@ void write_realisations(Hdf5Writer& f, const std::string& g, std::span<const Pop
           per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_iterations; }), "1");
   f.write(g + "/realisations/interacting_converged",
           per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_converged; }), "1");
+  f.write(g + "/realisations/load_carried",
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).load_carried; }), "1");
+  f.write(g + "/realisations/localisation_radius_m",
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.localisation_radius_m; }), "m");
+  f.write(g + "/realisations/far_field_m",
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.far_field_m; }), "m");
 }
 
 void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Population> pops, bool contact, bool sampled) {
@@ -106,7 +112,7 @@ void write_asperities(Hdf5Writer& f, const std::string& g, std::span<const Popul
   for (std::size_t j = 0; j < pops.size(); ++j) {
     for (std::size_t i = 0; i < pops[j].asperities.size(); ++i) {
       summit_index.push_back(i < pops[j].summit_of_asperity.size() ? static_cast<std::int64_t>(pops[j].summit_of_asperity[i])
-                                                                   : static_cast<std::int64_t>(i));
+                                                                   : std::int64_t{-1});
       cannot_slip.push_back(reports[j].cannot_slip_model1[i]);
       near_length.push_back(reports[j].near_length_model2[i]);
       deflection.push_back(reports[j].static_deflection_over_length[i]);
@@ -134,21 +140,18 @@ std::string joined_warnings(const ValidityReport& report) {
   return out;
 }
 
-void write_populations(Hdf5Writer& file, const std::string& group, std::span<const Population> populations,
-                       std::span<const ValidityReport> reports) {
+void write_populations(Hdf5Writer& file, const std::string& group, const RandomSurface* surface,
+                       std::span<const Population> populations, std::span<const ValidityReport> reports) {
   if (populations.size() != reports.size())
     throw Error("write_populations: " + std::to_string(populations.size()) + " populations but " +
                 std::to_string(reports.size()) + " reports");
   const std::string g = prefix_of(group);
-  // Stiffnesses were drawn when every realisation has one per summit and some have summits.
-  bool contact = !populations.empty(), sampled = true, any_summit = false;
-  for (const Population& p : populations) {
-    contact = contact && p.contact.has_value();
-    sampled = sampled && p.sampled_stiffness_n_per_m.size() == p.height_m.size();
-    any_summit = any_summit || !p.height_m.empty();
-  }
-  sampled = sampled && any_summit;
+  const bool contact = surface && surface->materials.has_value();
+  const bool sampled = surface && surface->stiffness_rule == StiffnessRule::sampled;
   write_realisations(file, g, populations, reports, contact);
+  if (contact)
+    file.attribute(g.empty() ? "/realisations" : g + "/realisations", "kernel",
+                   surface->interaction.kernel == InteractionKernel::point_load ? "point_load" : "hertz_pressure");
   write_summits(file, g, populations, contact, sampled);
   write_asperities(file, g, populations, reports);
 }

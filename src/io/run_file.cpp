@@ -146,7 +146,8 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   write_events(file, result);
   if (result.spectra) write_spectra(file, *result.spectra, *study.spectrum);
   // The realisation's population and its validity report, same layout as `stengmc surface`.
-  write_populations(file, "/surface", std::span(&study.population, 1), std::span(&result.validity, 1));
+  write_populations(file, "/surface", study.surface->random_surface(), std::span(&study.population, 1),
+                    std::span(&result.validity, 1));
   file.commit();
 }
 

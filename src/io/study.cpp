@@ -93,6 +93,11 @@ void read_surface(TomlTable& root, Study& study) {
 void draw_population(TomlTable& root, Study& study) {
   study.population = study.surface->sample(study.seed, study.realisation);
   study.asperities = study.population.asperities;
+  const auto& contact = study.population.contact;
+  if (contact && !contact->load_carried)
+    throw ModelError(root.location("surface") + ": realisation " + std::to_string(study.realisation) +
+                     " drew no summits (seed " + std::to_string(study.seed) +
+                     "): no separation can carry the nominal load W; nothing to simulate");
   if (study.asperities.empty())
     throw ModelError(root.location("surface") + ": realisation " + std::to_string(study.realisation) +
                      " of the surface has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
@@ -181,6 +186,15 @@ Study parse(TomlDocument& document, std::uint64_t realisation) {
 }
 
 }  // namespace
+
+ModelParameters read_model_parameters(const std::string& file) {
+  auto document = TomlDocument::from_file(file);
+  TomlTable root = document->root();
+  Study study;
+  read_model(root, study);
+  document->reject_unknown_keys("model");
+  return {study.model, study.model1, study.model2};
+}
 
 Study read_study(const std::string& file, std::uint64_t realisation) {
   auto document = TomlDocument::from_file(file);

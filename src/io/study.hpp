@@ -78,6 +78,14 @@ Study read_study(const std::string& file, std::uint64_t realisation = 0);
 //! The same from text (tests); `file` is used in messages and to resolve surface paths.
 Study parse_study(const std::string& text, const std::string& file, std::uint64_t realisation = 0);
 
+//! The tribology model of a study file alone ([model]; nothing else is read or drawn).
+struct ModelParameters {
+  ModelKind kind = ModelKind::model2;
+  Model1Params model1;
+  Model2Params model2;
+};
+ModelParameters read_model_parameters(const std::string& file);
+
 std::string_view model_name(ModelKind kind);
 std::string_view domain_policy_name(DomainPolicy policy);
 

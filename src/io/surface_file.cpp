@@ -21,11 +21,11 @@ void write_surface_file(const std::string& path, const Provenance& provenance, c
   file.attribute("/", "first_realisation",
                  static_cast<std::int64_t>(e.populations.empty() ? 0 : e.populations.front().realisation));
   file.attribute("/", "realisation_count", static_cast<std::int64_t>(e.populations.size()));
-  const ValidityThresholds thresholds;
+  const ValidityThresholds& thresholds = e.thresholds;
   file.attribute("/", "load_redistribution_threshold", thresholds.load_redistribution);
   file.attribute("/", "near_length_fraction", thresholds.near_length_fraction);
   file.attribute("/", "patch_over_radius_threshold", thresholds.patch_over_radius);
-  write_populations(file, "/", e.populations, e.reports);
+  write_populations(file, "/", e.random_surface, e.populations, e.reports);
   if (e.heights_target) write_target(file, "/target/heights", *e.heights_target, "m", "1/m");
   if (e.stiffness_target) write_target(file, "/target/stiffness", *e.stiffness_target, "N/m", "m/N");
   if (const auto& c = e.load_separation) {

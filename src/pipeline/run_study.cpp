@@ -130,7 +130,8 @@ RunResult run_study(const Study& study) {
   const std::size_t n = study.asperities.size();
   // The prior checks of the population; Model 1's "never slips" is judged on the solved
   // motion below instead, which also sees the initial state.
-  result.validity = assess_validity(study.population, study.model1, study.model2);
+  const ModelScope scope{study.model == ModelKind::model1, study.model == ModelKind::model2};
+  result.validity = assess_validity(study.population, study.model1, study.model2, {}, scope);
   result.notes = result.validity.contact_warnings;
   if (study.model == ModelKind::model2)
     result.notes.insert(result.notes.end(), result.validity.model2_warnings.begin(), result.validity.model2_warnings.end());

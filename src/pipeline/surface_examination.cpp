@@ -90,8 +90,12 @@ TargetLaw target_law(const Distribution& law) {
     const auto& values = law.fixed_values();
     const double each = 1.0 / static_cast<double>(values.size());
     for (double v : values) {
-      if (!t.value.empty() && t.value.back() == v) t.density.back() += each;
-      else t.value.push_back(v), t.density.push_back(each);
+      if (!t.value.empty() && t.value.back() == v) {
+        t.density.back() += each;
+      } else {
+        t.value.push_back(v);
+        t.density.push_back(each);
+      }
     }
     return t;
   }
@@ -106,14 +110,16 @@ TargetLaw target_law(const Distribution& law) {
 }
 
 SurfaceExamination examine_surface(const Surface& surface, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
-                                   const Model1Params& model1, const Model2Params& model2, Progress* progress) {
+                                   const Model1Params& model1, const Model2Params& model2, Progress* progress,
+                                   ModelScope scope) {
   SurfaceExamination e;
   e.seed = seed;
   for (std::uint64_t r = first; r < first + count; ++r) {
     e.populations.push_back(surface.sample(seed, r));
-    e.reports.push_back(assess_validity(e.populations.back(), model1, model2));
+    e.reports.push_back(assess_validity(e.populations.back(), model1, model2, e.thresholds, scope));
     if (progress) progress->advance();
   }
+  e.random_surface = surface.random_surface();
   if (const RandomSurface* s = surface.random_surface()) {
     e.heights_target = target_law(s->heights);
     if (s->stiffness) e.stiffness_target = target_law(*s->stiffness);
@@ -126,7 +132,7 @@ std::string format_surface_summary(const SurfaceExamination& e) {
   std::string out;
   char line[256];
   const std::size_t k = e.populations.size();
-  std::snprintf(line, sizeof line, "%zu realisations (seed %llu); over the realisations:\n", k,
+  std::snprintf(line, sizeof line, "%zu realisation%s (seed %llu); over the realisations:\n", k, k == 1 ? "" : "s",
                 static_cast<unsigned long long>(e.seed));
   out += line;
   std::snprintf(line, sizeof line, "  %-34s %11s %11s %11s %11s\n", "quantity", "mean", "std", "min", "max");
@@ -145,7 +151,8 @@ std::string format_surface_summary(const SurfaceExamination& e) {
       }));
   const bool contact = k > 0 && e.reports.front().contact_known;
   if (contact) {
-    row("separation d [m]", over_realisations(e, [](const Population& p, const ValidityReport&) { return p.contact->separation_m; }));
+    if (e.populations.front().contact->hertz_load)
+      row("separation d [m]", over_realisations(e, [](const Population& p, const ValidityReport&) { return p.contact->separation_m; }));
     row("contact density A_r/A0 [-]", over_realisations(e, [](const Population&, const ValidityReport& r) { return r.contact_density; }));
     row("interaction: load moved [-]",
         over_realisations(e, [](const Population&, const ValidityReport& r) { return r.load_redistribution; }));
@@ -158,6 +165,11 @@ std::string format_surface_summary(const SurfaceExamination& e) {
                 "median", "95 %", "max");
   out += line;
   auto quantiles = [&](const char* name, const std::vector<double>& v) {
+    if (v.empty()) {
+      std::snprintf(line, sizeof line, "  %-34s %11s %11s %11s %11s\n", name, "-", "-", "-", "-");
+      out += line;
+      return;
+    }
     std::snprintf(line, sizeof line, "  %-34s %11.4g %11.4g %11.4g %11.4g\n", name, quantile(v, 0.05), quantile(v, 0.5),
                   quantile(v, 0.95), quantile(v, 1.0));
     out += line;
@@ -167,28 +179,50 @@ std::string format_surface_summary(const SurfaceExamination& e) {
   quantiles("natural frequency [Hz]",
             pooled(e, [](const Asperity& a) { return std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI); }));
 
-  // How many realisations fail each kind of check, then the first failing one's words.
-  const char* kinds[] = {"contact (independence, Hertz range)", "Model 1 (cannot slip)", "Model 2 (x near l)"};
-  auto warnings_of = [](const ValidityReport& r, int kind) -> const std::vector<std::string>& {
-    return kind == 0 ? r.contact_warnings : kind == 1 ? r.model1_warnings : r.model2_warnings;
+  // How many realisations fail each check, and the first failing one's words.
+  struct Check {
+    const char* name;
+    std::function<bool(const ValidityReport&)> failed;
+    std::function<const std::vector<std::string>&(const ValidityReport&)> words;
+  };
+  const auto contact_words = [](const ValidityReport& r) -> const std::vector<std::string>& { return r.contact_warnings; };
+  const Check checks[] = {
+      {"no summits to carry W", [](const ValidityReport& r) { return !r.load_carried; }, contact_words},
+      {"spots not independent", [](const ValidityReport& r) { return !r.independence_holds; }, contact_words},
+      {"interacting mode not converged", [](const ValidityReport& r) { return !r.interacting_converged; }, contact_words},
+      {"overlapping patches", [](const ValidityReport& r) { return r.overlapping_pairs > 0; }, contact_words},
+      {"patches beyond Hertz's range", [](const ValidityReport& r) { return r.beyond_hertz; }, contact_words},
+      {"Model 1: asperities that cannot slip", [](const ValidityReport& r) { return r.cannot_slip_count > 0; },
+       [](const ValidityReport& r) -> const std::vector<std::string>& { return r.model1_warnings; }},
+      {"Model 2: asperities near l", [](const ValidityReport& r) { return r.near_length_count > 0; },
+       [](const ValidityReport& r) -> const std::vector<std::string>& { return r.model2_warnings; }},
   };
   bool any = false;
-  for (int kind = 0; kind < 3; ++kind) {
-    std::size_t flagged = 0;
+  for (const Check& check : checks) {
+    std::size_t failed = 0;
     const ValidityReport* first = nullptr;
     for (const ValidityReport& r : e.reports)
-      if (!warnings_of(r, kind).empty()) {
-        ++flagged;
+      if (check.failed(r)) {
+        ++failed;
         if (!first) first = &r;
       }
-    if (flagged == 0) continue;
-    if (!any) out += "validity warnings (realisations affected; the first one's words):\n";
+    if (failed == 0) continue;
+    if (!any) out += "validity (realisations failing each check):\n";
     any = true;
-    std::snprintf(line, sizeof line, "  %-36s %zu of %zu\n", kinds[kind], flagged, k);
+    std::snprintf(line, sizeof line, "  %-38s %zu of %zu\n", check.name, failed, k);
     out += line;
-    for (const std::string& w : warnings_of(*first, kind)) out += "    WARNING: " + w + "\n";
   }
-  if (!any) out += "validity: no warnings\n";
+  if (!any) {
+    out += "validity: every check passed\n";
+    return out;
+  }
+  out += "the first failing realisation's words:\n";
+  for (const ValidityReport& r : e.reports) {
+    if (r.contact_warnings.empty() && r.model1_warnings.empty() && r.model2_warnings.empty()) continue;
+    for (const auto* list : {&r.contact_warnings, &r.model1_warnings, &r.model2_warnings})
+      for (const std::string& w : *list) out += "  WARNING: " + w + "\n";
+    break;
+  }
   return out;
 }
 

@@ -34,6 +34,8 @@ struct LoadSeparationCurve {
 
 struct SurfaceExamination {
   std::uint64_t seed = 0;
+  ValidityThresholds thresholds;  //!< what the reports were judged against
+  const RandomSurface* random_surface = nullptr;  //!< the surface examined (nullptr: a fixed list); outlives this
   std::vector<Population> populations;
   std::vector<ValidityReport> reports;
   std::optional<TargetLaw> heights_target;    //!< random surfaces
@@ -48,7 +50,8 @@ TargetLaw target_law(const Distribution& law);
 //! Realisations first .. first + count - 1 of `surface` under `seed`, each assessed against
 //! the given model parameters.
 SurfaceExamination examine_surface(const Surface& surface, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
-                                   const Model1Params& model1, const Model2Params& model2, Progress* progress = nullptr);
+                                   const Model1Params& model1, const Model2Params& model2, Progress* progress = nullptr,
+                                   ModelScope scope = {});
 
 //! The on-screen summary: a table of population statistics over the realisations and the
 //! validity findings.

@@ -33,6 +33,11 @@ double kernel_displacement(InteractionKernel kernel, double load, double patch_r
   return p0 / (2.0 * a * e_star) * ((2.0 * a * a - r * r) * std::asin(x) + a * std::sqrt(r * r - a * a));
 }
 
+//! Normal contact stiffness of a Hertz spot, dN/d delta = 2 E* a (Johnson 1985, §4.2).
+double contact_stiffness(double effective_modulus_pa, double patch_radius_m) {
+  return 2.0 * effective_modulus_pa * patch_radius_m;
+}
+
 //! Uniform cell list over the loaded spots, cell side >= R_loc so a query scans 3 x 3 cells.
 class CellList {
  public:
@@ -156,7 +161,7 @@ SpotInteraction spot_interaction(const std::vector<double>& x_m, const std::vect
   const double ns = static_cast<double>(sources.size());
   double stiffness_sum = 0.0, weighted_extra = 0.0, load_sum = 0.0;
   for (std::size_t j : sources) {
-    const double s_j = 2.0 * effective_modulus_pa * patch_radius_m[j];  // dN/d delta of a Hertz spot
+    const double s_j = contact_stiffness(effective_modulus_pa, patch_radius_m[j]);
     stiffness_sum += s_j;
     weighted_extra += s_j * s.extra_displacement_m[j];
     load_sum += load_n[j];
@@ -164,7 +169,7 @@ SpotInteraction spot_interaction(const std::vector<double>& x_m, const std::vect
   const double uniform_part = weighted_extra / stiffness_sum;
   double moved = 0.0;
   for (std::size_t j : sources)
-    moved += 2.0 * effective_modulus_pa * patch_radius_m[j] * std::abs(s.extra_displacement_m[j] - uniform_part);
+    moved += contact_stiffness(effective_modulus_pa, patch_radius_m[j]) * std::abs(s.extra_displacement_m[j] - uniform_part);
   s.load_redistribution = moved / load_sum;
   s.rms_relative = std::sqrt(sum2 / ns);
   return s;
@@ -211,19 +216,26 @@ InteractingContact solve_interacting_contact(const std::vector<double>& heights_
     const Eigen::VectorXd f = g - u;
     double residual = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      residual = std::max(residual, 2.0 * effective_modulus_pa * out.contact.patch_radius_m[i] * std::abs(f[static_cast<Eigen::Index>(i)]));
+      residual = std::max(residual, contact_stiffness(effective_modulus_pa, out.contact.patch_radius_m[i]) *
+                                        std::abs(f[static_cast<Eigen::Index>(i)]));
     out.last_change = residual / nominal_load_n;
     if (out.last_change < tolerance) {
       out.converged = true;
       return out;
     }
     // A residual far above the best seen means the history misleads: start it afresh.
-    if (out.last_change > 10.0 * best_residual) delta_f.clear(), delta_g.clear();
+    if (out.last_change > 10.0 * best_residual) {
+      delta_f.clear();
+      delta_g.clear();
+    }
     best_residual = std::min(best_residual, out.last_change);
     if (f_prev.size() > 0) {
       delta_f.push_back(f - f_prev);
       delta_g.push_back(g - g_prev);
-      if (delta_f.size() > depth) delta_f.pop_front(), delta_g.pop_front();
+      if (delta_f.size() > depth) {
+        delta_f.pop_front();
+        delta_g.pop_front();
+      }
     }
     f_prev = f;
     g_prev = g;

@@ -42,7 +42,9 @@ struct SpotInteraction {
   //!   sum_i s_i |u_i - u_bar| / sum_i N_i,  s_i = dN_i/d delta_i = 2 E* a_i (Hertz),
   //! where u_bar = sum s_i u_i / sum s_i is the uniform part a fixed W absorbs into the
   //! separation. Unlike extra_i / delta_i it stays bounded for barely touching spots
-  //! (s_i -> 0), so one grazing summit cannot dominate it.
+  //! (s_i -> 0), so one grazing summit cannot dominate it. It is linear in u: where
+  //! close pairs push each other hard it overestimates what the interacting mode moves,
+  //! and with the point-load kernel an overlapping pair makes it diverge.
   double load_redistribution = 0.0;
   std::size_t contact_count = 0;             //!< spots with load > 0
   std::size_t overlapping_pairs = 0;         //!< spot pairs closer than a_i + a_j (patches would merge) [-]

@@ -3,6 +3,7 @@
 #include <boost/random/poisson_distribution.hpp>
 #include <boost/random/uniform_real_distribution.hpp>
 #include <cmath>
+#include <tuple>
 #include <string>
 
 #include "core/constants.hpp"
@@ -93,9 +94,10 @@ void solve_contact(const RandomSurface& s, Population& p) {
   if (s.load_rule == LoadRule::fixed) {
     hertz = fixed_load_contact(n, s.normal_load_n, m.summit_radius_m, e_star);
   } else if (n == 0) {
-    throw ModelError("realisation " + std::to_string(p.realisation) + " drew no summits (mean " +
-                     format_number(s.mean_summit_count()) + "): no separation can carry the nominal load W = " +
-                     format_number(s.nominal_load_n) + " N");
+    c.hertz_load = true;
+    c.load_carried = false;
+    p.contact = std::move(c);
+    return;
   } else if (s.interaction_mode == InteractionMode::apply) {
     InteractingContact solved = solve_interacting_contact(p.height_m, p.x_m, p.y_m, m.summit_radius_m, e_star,
                                                           s.nominal_load_n, s.nominal_area_m2, s.interaction);
@@ -110,6 +112,7 @@ void solve_contact(const RandomSurface& s, Population& p) {
   if (!have_interaction && hertz.contact_count > 0)
     c.interaction = spot_interaction(p.x_m, p.y_m, hertz.load_n, hertz.patch_radius_m, hertz.interference_m, e_star,
                                      s.nominal_area_m2, s.interaction);
+  c.hertz_load = s.load_rule == LoadRule::hertz;
   c.separation_m = hertz.separation_m;
   c.interference_m = std::move(hertz.interference_m);
   c.patch_radius_m = std::move(hertz.patch_radius_m);

@@ -23,6 +23,8 @@ struct PopulationContact {
   double contact_density = 0.0;       //!< A_r / A0 [-]
   double screening_estimate = 0.0;    //!< (4/3 pi)(A_r/A0)^(3/2), MODEL.md §4 [-]
   SpotInteraction interaction;        //!< Goryacheva estimate for the final loads
+  bool hertz_load = false;            //!< loads from the Hertz solve (else a fixed load per summit)
+  bool load_carried = true;           //!< false: a Hertz load, but the realisation drew no summit
   int interacting_iterations = 0;     //!< interacting mode: fixed-point iterations (0 otherwise)
   bool interacting_converged = true;  //!< interacting mode: the fixed point was reached
 };
@@ -45,8 +47,10 @@ struct Population {
 //! Realisation `realisation` of `surface` under `seed`: every random number comes from
 //! random_stream(seed, realisation, kind) with one named stream per quantity, so the
 //! result depends on (surface, seed, realisation) alone.
-//! @throws ModelError when the realisation cannot be loaded: a hertz load with no summits
-//!         drawn (no separation can carry W), a patch too small for an element.
+//! A Hertz load with no summit drawn has no separation that carries W: the population is
+//! returned empty with contact->load_carried = false (a run of it fails, an examination
+//! counts it).
+//! @throws ModelError when an asperity in contact gets k, m or l <= 0 (a degenerate patch).
 Population sample_population(const RandomSurface& surface, std::uint64_t seed, std::uint64_t realisation);
 
 }  // namespace stengmc

@@ -1,6 +1,8 @@
 // Reading a random surface (README: surface files). Every rule that needs data another
 // table provides is checked here, so a surface that reads is a surface that samples.
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <string>
 
 #include "core/format.hpp"
@@ -42,6 +44,16 @@ void read_summits(TomlTable& root, RandomSurface& s) {
         t.fail("x_m", "entry " + std::to_string(i + 1) + " (" + format_number(s.given_x_m[i]) + ", " +
                           format_number(s.given_y_m[i]) + ") m lies outside the nominal square [0, " + format_number(side) +
                           "] m (side sqrt(nominal_area_m2))");
+    // Two summits at one point are one summit (and a singular point-load interaction).
+    std::vector<std::size_t> order(s.given_x_m.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return std::tie(s.given_x_m[a], s.given_y_m[a], a) < std::tie(s.given_x_m[b], s.given_y_m[b], b);
+    });
+    for (std::size_t k = 1; k < order.size(); ++k)
+      if (s.given_x_m[order[k]] == s.given_x_m[order[k - 1]] && s.given_y_m[order[k]] == s.given_y_m[order[k - 1]])
+        t.fail("x_m", "entries " + std::to_string(std::min(order[k], order[k - 1]) + 1) + " and " +
+                          std::to_string(std::max(order[k], order[k - 1]) + 1) + " put two summits at the same point");
     s.summit_count = s.given_x_m.size();
     if (t.has("count") && t.integer("count", 0, 1) != static_cast<long long>(s.summit_count))
       t.fail("count", "disagrees with the " + std::to_string(s.summit_count) + " given positions; leave it out");
@@ -57,7 +69,8 @@ void read_summits(TomlTable& root, RandomSurface& s) {
   if (s.mean_summit_count() > MAX_MEAN_SUMMITS)
     t.fail(s.count_rule == CountRule::poisson ? "density_per_m2" : "count",
            "gives " + format_number(s.mean_summit_count()) + " summits per realisation, above the limit of " +
-               format_number(MAX_MEAN_SUMMITS) + "; use a smaller nominal_area_m2");
+               format_number(MAX_MEAN_SUMMITS) +
+               (s.count_rule == CountRule::poisson ? "; use a smaller nominal_area_m2" : "; use a smaller count"));
 }
 
 void read_materials(TomlTable& root, RandomSurface& s) {
@@ -105,7 +118,8 @@ void read_stiffness(TomlTable& root, RandomSurface& s, const std::filesystem::pa
   const bool open_at_zero = kind == Distribution::Kind::lognormal || kind == Distribution::Kind::gamma ||
                             kind == Distribution::Kind::weibull;
   if (lower < 0.0 || (!open_at_zero && lower <= 0.0))
-    t.fail("kind", "can draw stiffness " + format_number(lower) + " N/m: stiffnesses must be > 0 (truncate with min = ...)");
+    t.fail(t.has("min") ? "min" : "kind", "lets the law draw stiffness " + format_number(lower) +
+                                              " N/m: stiffnesses must be > 0 (truncate with min > 0)");
 }
 
 void read_load(TomlTable& root, RandomSurface& s) {

@@ -22,9 +22,19 @@ struct ValidityThresholds {
   double patch_over_radius = 0.3;
 };
 
+//! Which tribology models a report speaks about: a run checks its own model only, the
+//! `surface` command both (against the defaults unless --study gives parameters).
+struct ModelScope {
+  bool model1 = true;
+  bool model2 = true;
+};
+
 //! The report. Per-asperity arrays follow Population::asperities.
 struct ValidityReport {
   bool contact_known = false;            //!< the population has contact data (material data given)
+  bool load_carried = true;              //!< false: a Hertz load with no summit to carry it
+  bool interacting_converged = true;     //!< interacting mode reached its fixed point (true when not applied)
+  bool beyond_hertz = false;             //!< some patch beyond Hertz's small-strain range
   double contact_density = 0.0;          //!< A_r / A0 [-]
   double screening_estimate = 0.0;       //!< (4/3 pi)(A_r/A0)^(3/2) [-]
   double load_redistribution = 0.0;      //!< fraction of the load the interaction moves between spots [-]
@@ -33,6 +43,7 @@ struct ValidityReport {
   bool independence_holds = true;        //!< load_redistribution below its threshold
   double max_patch_over_radius = 0.0;    //!< largest a / R_s [-]
 
+  // Per asperity; all zero for a model outside the report's scope.
   std::vector<unsigned char> cannot_slip_model1;   //!< A <= mu_s N / k: never moves under Model 1
   std::vector<double> static_deflection_over_length;  //!< Model 2 breakaway deflection (mu_s N - c v_b)/k over l [-]
   std::vector<unsigned char> near_length_model2;   //!< that ratio >= near_length_fraction
@@ -49,6 +60,6 @@ struct ValidityReport {
 //! Checks `population` against the Model 1 and Model 2 parameters (the study's, or the
 //! defaults when a surface is examined on its own).
 ValidityReport assess_validity(const Population& population, const Model1Params& model1, const Model2Params& model2,
-                               const ValidityThresholds& thresholds = {});
+                               const ValidityThresholds& thresholds = {}, ModelScope scope = {});
 
 }  // namespace stengmc

