@@ -89,19 +89,44 @@ void read_surface(TomlTable& root, Study& study) {
   study.surface_text = document->text();
 }
 
-//! Draws the run's realisation; an empty one has nothing to simulate.
-void draw_population(TomlTable& root, Study& study) {
+//! Draws the study's realisation into `population` and `asperities`. Everything that can
+//! go wrong here belongs to the realisation, not to the file: a ModelError naming both,
+//! which an ensemble counts as an invalid realisation.
+void draw_population(Study& study) {
   study.population = study.surface->sample(study.seed, study.realisation);
   study.asperities = study.population.asperities;
+  const std::string which = study.file + ": realisation " + std::to_string(study.realisation);
+  const std::string seed = "seed " + std::to_string(study.seed);
   const auto& contact = study.population.contact;
   if (contact && !contact->load_carried)
-    throw ModelError(root.location("surface") + ": realisation " + std::to_string(study.realisation) +
-                     " drew no summits (seed " + std::to_string(study.seed) +
-                     "): no separation can carry the nominal load W; nothing to simulate");
+    throw ModelError(which + " drew no summits (" + seed + "): no separation can carry the nominal load W; nothing to simulate");
   if (study.asperities.empty())
-    throw ModelError(root.location("surface") + ": realisation " + std::to_string(study.realisation) +
-                     " of the surface has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
-                     " summits drawn, seed " + std::to_string(study.seed) + "): nothing to simulate");
+    throw ModelError(which + " has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
+                     " summits drawn, " + seed + "): nothing to simulate");
+}
+
+//! Sampling below twice the highest natural frequency aliases the asperity lines. For a
+//! fixed list that is the file's fault (InputError at sample_rate_hz); for a random
+//! surface, the realisation's (ModelError, see draw_population).
+void check_sample_rate(const Study& study, TomlTable* root) {
+  double highest_hz = 0.0;
+  std::size_t which = 0;
+  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
+    const Asperity& a = study.asperities[i];
+    const double f = std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI);
+    if (f > highest_hz) {
+      highest_hz = f;
+      which = i;
+    }
+  }
+  if (study.sample_rate_hz >= 2.0 * highest_hz) return;
+  const std::string what = "= " + format_number(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
+                           format_number(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
+                           "): use at least " + format_number(2.0 * highest_hz) + " Hz";
+  if (study.surface->random_surface())
+    throw ModelError(study.file + ": realisation " + std::to_string(study.realisation) + ": sample_rate_hz " + what);
+  if (root) root->fail("sample_rate_hz", what);
+  throw InputError(study.file + ": sample_rate_hz " + what);
 }
 
 void read_circuit(TomlTable& root, Study& study) {
@@ -118,29 +143,13 @@ void read_circuit(TomlTable& root, Study& study) {
     circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");
 }
 
-//! Sampling below twice the highest natural frequency aliases the asperity lines.
-void check_sample_rate(TomlTable& root, const Study& study) {
-  double highest_hz = 0.0;
-  std::size_t which = 0;
-  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
-    const Asperity& a = study.asperities[i];
-    const double f = std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI);
-    if (f > highest_hz) highest_hz = f, which = i;
-  }
-  if (study.sample_rate_hz < 2.0 * highest_hz)
-    root.fail("sample_rate_hz", "= " + format_number(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
-                                    format_number(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
-                                    (study.surface->random_surface() ? " of realisation " + std::to_string(study.realisation) : "") +
-                                    "): use at least " + format_number(2.0 * highest_hz) + " Hz");
-}
-
 std::string default_output_file(const std::string& study_file) {
   return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
 }
 
-Study parse(TomlDocument& document, std::uint64_t realisation) {
+Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation) {
   Study study;
-  study.realisation = realisation;
+  study.realisation = realisation.value_or(0);
   study.file = document.file();
   study.text = document.text();
   TomlTable root = document.root();
@@ -158,6 +167,11 @@ Study parse(TomlDocument& document, std::uint64_t realisation) {
     study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
   }
   if (auto spectrum = root.table("spectrum")) study.spectrum = read_spectrum_settings(*spectrum);
+  if (auto ensemble = root.table("ensemble")) study.ensemble = read_ensemble_settings(*ensemble);
+  if (auto noise = root.table("noise")) {
+    study.noise = read_noise_settings(*noise);
+    if (!study.spectrum) noise->fail("snr_db", "needs a [spectrum] table: the noise is added to the voltage the spectra analyse");
+  }
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);
@@ -169,8 +183,10 @@ Study parse(TomlDocument& document, std::uint64_t realisation) {
   }
   document.reject_unknown_keys();
 
-  draw_population(root, study);
-  check_sample_rate(root, study);
+  if (realisation) {
+    draw_population(study);
+    check_sample_rate(study, &root);
+  }
   // The grid must end at duration_s: a fractional sample count would silently change it.
   const double intervals = study.duration_s * study.sample_rate_hz;
   if (std::abs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals))
@@ -196,12 +212,20 @@ ModelParameters read_model_parameters(const std::string& file) {
   return {study.model, study.model1, study.model2};
 }
 
-Study read_study(const std::string& file, std::uint64_t realisation) {
+Study study_for_realisation(const Study& base, std::uint64_t realisation) {
+  Study study = base;
+  study.realisation = realisation;
+  draw_population(study);
+  check_sample_rate(study, nullptr);
+  return study;
+}
+
+Study read_study(const std::string& file, std::optional<std::uint64_t> realisation) {
   auto document = TomlDocument::from_file(file);
   return parse(*document, realisation);
 }
 
-Study parse_study(const std::string& text, const std::string& file, std::uint64_t realisation) {
+Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation) {
   auto document = TomlDocument::from_string(text, file);
   return parse(*document, realisation);
 }

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "circuit/circuit_solver.hpp"
+#include "ensemble/ensemble_settings.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "surface/asperity.hpp"
 #include "surface/surface.hpp"
@@ -64,19 +65,27 @@ struct Study {
   std::string output_file;    //!< where `run` writes, unless the command line says otherwise
   OutputTraces traces;        //!< which traces it writes
   std::optional<SpectrumSettings> spectrum;  //!< spectral analysis, when the study has [spectrum]
+  std::optional<EnsembleSettings> ensemble;  //!< when the study is an ensemble ([ensemble])
+  std::optional<NoiseSettings> noise;        //!< measurement noise on V before the spectra ([noise])
 
   //! The output grid.
   [[nodiscard]] TimeGrid grid() const { return TimeGrid::covering(duration_s, sample_rate_hz); }
 };
 
-//! Reads and validates a study file and draws realisation `realisation` of its surface;
-//! throws InputError naming file, line, key and what was expected (ModelError when the
+//! Reads and validates a study file and draws realisation `realisation` of its surface
+//! (none when nullopt: an ensemble draws each with study_for_realisation); throws
+//! InputError naming file, line, key and what was expected (ModelError when the
 //! realisation itself cannot be loaded). Relative surface paths are taken from the study
 //! file's folder.
-Study read_study(const std::string& file, std::uint64_t realisation = 0);
+Study read_study(const std::string& file, std::optional<std::uint64_t> realisation = 0);
 
 //! The same from text (tests); `file` is used in messages and to resolve surface paths.
-Study parse_study(const std::string& text, const std::string& file, std::uint64_t realisation = 0);
+Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation = 0);
+
+//! `base` (read without a realisation, or with another) at realisation `realisation`:
+//! population and asperities drawn from (seed, realisation) alone.
+//! @throws ModelError when the realisation has nothing to simulate or aliases its lines.
+Study study_for_realisation(const Study& base, std::uint64_t realisation);
 
 //! The tribology model of a study file alone ([model]; nothing else is read or drawn).
 struct ModelParameters {

@@ -1,0 +1,54 @@
+#include "ensemble/ensemble_settings.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/format.hpp"
+
+namespace stengmc {
+
+namespace {
+// Realisation ids are written as int64 everywhere.
+constexpr long long MAX_REALISATIONS = std::numeric_limits<std::int64_t>::max();
+}  // namespace
+
+EnsembleSettings read_ensemble_settings(TomlTable& t) {
+  EnsembleSettings s;
+  if (!t.has("realisations"))
+    t.fail("realisations", "is missing: the number of realisations (with a target: the most that may be drawn)");
+  s.realisations = static_cast<std::uint64_t>(t.integer("realisations", 0, 1));
+  if (t.has("target_statistic")) {
+    const std::string name = t.string("target_statistic", "");
+    Scalar scalar{};
+    if (!scalar_by_name(name, scalar))
+      t.fail("target_statistic", "= \"" + name + "\" is not a per-realisation scalar; expected one of " + scalar_names());
+    s.target = scalar;
+    if (!t.has("target_half_width"))
+      t.fail("target_half_width", "is missing: target_statistic needs the 95 % CI half-width to stop at");
+    s.target_half_width = t.positive("target_half_width", 0.0);
+  } else if (t.has("target_half_width")) {
+    t.fail("target_half_width", "needs target_statistic = \"...\" (which statistic's mean to converge)");
+  }
+  s.batch = static_cast<std::uint64_t>(t.integer("batch", static_cast<long long>(s.batch), 1));
+  if (t.has("trace_realisations")) {
+    s.trace_realisations.clear();
+    for (double v : t.number_list("trace_realisations")) {
+      if (v < 0.0 || v != std::floor(v) || v > static_cast<double>(MAX_REALISATIONS))
+        t.fail("trace_realisations", "entry " + format_number(v) + " is not a realisation id (an integer >= 0)");
+      s.trace_realisations.push_back(static_cast<std::uint64_t>(v));
+    }
+  }
+  return s;
+}
+
+NoiseSettings read_noise_settings(TomlTable& t) {
+  NoiseSettings s;
+  if (!t.has("snr_db")) t.fail("snr_db", "is missing: the signal-to-noise ratio of the white noise added to V [dB]");
+  s.snr_db = t.number("snr_db", 0.0);
+  if (!std::isfinite(s.snr_db) || std::abs(s.snr_db) > 300.0)
+    t.fail("snr_db", "= " + format_number(s.snr_db) + " must lie in [-300, 300] dB");
+  return s;
+}
+
+}  // namespace stengmc

@@ -1,0 +1,36 @@
+#pragma once
+//! The [ensemble] and [noise] tables of a study (README: ensembles).
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "ensemble/realisation_record.hpp"
+#include "io/toml_reader.hpp"
+
+namespace stengmc {
+
+//! How many realisations, and which keep their traces.
+struct EnsembleSettings {
+  //! Fixed size K; with a target, the most the run may draw.
+  std::uint64_t realisations = 0;
+  //! Optional stopping rule: stop once the 95 % CI half-width of the mean of `target`
+  //! is at most `target_half_width` (checked after every `batch` realisations, in id
+  //! order, so where it stops does not depend on the number of threads).
+  std::optional<Scalar> target;
+  double target_half_width = 0.0;
+  std::uint64_t batch = 64;
+  //! Realisations whose time, voltage and charge traces are written.
+  std::vector<std::uint64_t> trace_realisations{0};
+};
+
+//! Measurement noise added to the voltage before the spectral analysis (MODEL.md §3).
+struct NoiseSettings {
+  //! White Gaussian noise at this signal-to-noise ratio: sigma^2 = P / 10^(snr/10) with
+  //! P the mean square of the (mean-removed) voltage over the analysis interval [dB].
+  double snr_db = 0.0;
+};
+
+EnsembleSettings read_ensemble_settings(TomlTable& table);
+NoiseSettings read_noise_settings(TomlTable& table);
+
+}  // namespace stengmc
