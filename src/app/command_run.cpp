@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "core/error.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
 #include "pipeline/run_study.hpp"
@@ -17,10 +18,12 @@ struct RunOptions {
   std::string study_file;
   std::string out;
   std::uint64_t realisation = 0;
+  bool realisation_given = false;
   bool figures = false;
+  EnsembleCommandOptions ensemble;
 };
 
-void run(const RunOptions& options) {
+void run_single(const RunOptions& options) {
   const Study study = read_study(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output_file : options.out;
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
@@ -43,6 +46,18 @@ void run(const RunOptions& options) {
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");
 }
 
+void run(const RunOptions& options) {
+  // An [ensemble] study runs as an ensemble unless one realisation is asked for.
+  const Study base = read_study(options.study_file, std::nullopt);
+  if (base.ensemble && !options.realisation_given) {
+    run_ensemble_study(base, options.out, options.figures, options.ensemble);
+    return;
+  }
+  if (options.ensemble.only || options.ensemble.restart)
+    throw InputError(options.study_file + " has no [ensemble] table: --only and --restart apply to ensembles only");
+  run_single(options);
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
@@ -52,12 +67,24 @@ void add_run_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
-  command->add_option("-r,--realisation", options->realisation,
-                      "Which realisation of a random surface to run (depends on the study's seed and this id only)")
+  CLI::Option* realisation = command->add_option(
+      "-r,--realisation", options->realisation,
+      "Run this one realisation of a random surface and write its full run file (also for an [ensemble] study)")
       ->capture_default_str()
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
-  command->callback([options] { run(*options); });
+  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (0: OMP_NUM_THREADS or every core)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
+  command->add_option("--only", options->ensemble.only,
+                      "Ensemble: run realisation R alone into an ensemble file (to check it against a batch)")
+      ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
+  command->add_flag("--restart", options->ensemble.restart,
+                    "Ensemble: discard the journal of an interrupted run instead of resuming it");
+  command->callback([options, realisation] {
+    options->realisation_given = realisation->count() > 0;
+    run(*options);
+  });
 }
 
 }  // namespace stengmc::app

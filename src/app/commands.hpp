@@ -1,6 +1,11 @@
 #pragma once
 //! The subcommands of `stengmc`; each registers itself on the CLI11 app.
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "io/study.hpp"
 
 namespace stengmc::app {
 
@@ -9,6 +14,17 @@ void add_circuit_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_spectrum_command(CLI::App& app);
 void add_surface_command(CLI::App& app);
+
+//! What `run` passes on to an ensemble.
+struct EnsembleCommandOptions {
+  int threads = 0;
+  std::optional<std::uint64_t> only;
+  bool restart = false;
+};
+
+//! Runs an [ensemble] study: realisations in parallel, journal, statistics, output file.
+void run_ensemble_study(const stengmc::Study& study, const std::string& out, bool figures,
+                        const EnsembleCommandOptions& options);
 
 //! Renders the figures of an output file with scripts/plot_run.py; returns the PNG paths printed.
 int render_figures(const std::string& h5_path);

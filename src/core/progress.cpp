@@ -33,9 +33,10 @@ void Progress::draw(bool final) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
   const int filled = static_cast<int>(fraction * BAR_WIDTH);
-  std::fprintf(stderr, "\r%-10s [%.*s%*s] %5.1f%%  elapsed %6.1f s  ETA %6.1f s", label_.c_str(),
-               filled, "##############################", BAR_WIDTH - filled, "", 100.0 * fraction,
-               elapsed, eta);
+  // \033[K clears what a longer previous line left behind.
+  std::fprintf(stderr, "\r%-10s [%.*s%*s] %5.1f%%  elapsed %6.1f s  ETA %6.1f s%s%s\033[K", label_.c_str(), filled,
+               "##############################", BAR_WIDTH - filled, "", 100.0 * fraction, elapsed, eta,
+               status_.empty() ? "" : "  ", status_.c_str());
   if (final) std::fputc('\n', stderr);
   std::fflush(stderr);
 }

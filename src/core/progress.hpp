@@ -18,6 +18,8 @@ class Progress {
 
   //! Marks `units` more work units as done.
   void advance(std::size_t units = 1);
+  //! A short live line shown after the ETA (e.g. the running statistics); "" for none.
+  void set_status(std::string status) { status_ = std::move(status); }
 
  private:
   void draw(bool final);
@@ -25,6 +27,7 @@ class Progress {
   std::string label_;
   std::size_t total_;
   std::size_t done_ = 0;
+  std::string status_;
   bool shown_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;

@@ -139,6 +139,11 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
              column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }), "1");
 
   write_circuit(file, result.circuit, study.circuit, traces);
+  if (!result.measured_voltage_v.empty()) {
+    file.write("/circuit/measured_voltage", result.measured_voltage_v, "V");
+    file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);
+    file.attribute("/circuit/measured_voltage", "snr_db", study.noise->snr_db);
+  }
   file.attribute("/circuit", "input", study.circuit_input == CircuitInput::actual ? "actual" : "imposed");
   file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);
   file.attribute("/circuit", "voltage_peak_v", summary.voltage_peak_v);

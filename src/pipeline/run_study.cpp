@@ -12,6 +12,7 @@
 #include "tribology/imposed_drive.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
+#include "pipeline/measurement_noise.hpp"
 #include "pipeline/slip_fraction.hpp"
 
 namespace stengmc {
@@ -102,7 +103,7 @@ SpectralResult analyse_run_spectra(const Study& study, const RunResult& result) 
   const SpectrumSettings& settings = *study.spectrum;
   SpectralInput input;
   input.times_s = std::span<const double>(result.times_s.data(), result.circuit_samples);
-  input.voltage_v = result.circuit.voltage_v;
+  input.voltage_v = result.measured_voltage_v.empty() ? result.circuit.voltage_v : result.measured_voltage_v;
   input.currents_a = &result.circuit.current_a;
   try {
     const AnalysisRange range = analysis_range(input.times_s, settings);
@@ -121,9 +122,22 @@ SpectralResult analyse_run_spectra(const Study& study, const RunResult& result) 
   }
 }
 
+//! V plus the study's [noise], what the spectra analyse. The noise has its own stream of
+//! (seed, realisation): a realisation gets the same noise in a single run and in an
+//! ensemble, and no other quantity's draws move.
+void add_measurement_noise(const Study& study, RunResult& result) {
+  if (!study.noise) return;
+  RandomEngine engine = random_stream(study.seed, study.realisation, StreamKind::noise);
+  const AnalysisRange range =
+      analysis_range(std::span<const double>(result.times_s.data(), result.circuit_samples), *study.spectrum);
+  NoisyVoltage noisy = add_white_noise(result.circuit.voltage_v, range.first_sample, range.samples, study.noise->snr_db, engine);
+  result.measured_voltage_v = std::move(noisy.voltage_v);
+  result.noise_sigma_v = noisy.sigma_v;
+}
+
 }  // namespace
 
-RunResult run_study(const Study& study) {
+RunResult run_study(const Study& study, const RunOptions& options) {
   RunResult result;
   const TimeGrid grid = study.grid();
   result.times_s = grid.times();
@@ -138,7 +152,8 @@ RunResult run_study(const Study& study) {
 
   const auto tribology_start = Clock::now();
   {
-    Progress progress("tribology", n);
+    std::optional<Progress> progress;
+    if (options.show_progress) progress.emplace("tribology", n);
     for (std::size_t i = 0; i < n; ++i) {
       result.trajectories.push_back(solve_one(study, study.asperities[i], grid));
       check_finite(result.trajectories.back(), study.asperities[i], i, grid);
@@ -146,7 +161,7 @@ RunResult run_study(const Study& study) {
         e.asperity = i;
         result.events.push_back(e);
       }
-      progress.advance();
+      if (progress) progress->advance();
     }
   }
   result.tribology_seconds = seconds_since(tribology_start);
@@ -175,15 +190,24 @@ RunResult run_study(const Study& study) {
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   {
-    Progress progress("circuit", result.circuit_samples);
+    std::optional<Progress> progress;
+    if (options.show_progress) progress.emplace("circuit", result.circuit_samples);
     result.circuit = solve_circuit(elements, inputs, std::span<const double>(result.times_s.data(), result.circuit_samples),
-                                   study.circuit, &progress);
+                                   study.circuit, progress ? &*progress : nullptr);
   }
   result.circuit_seconds = seconds_since(circuit_start);
 
   if (study.spectrum) {
     const auto spectrum_start = Clock::now();
-    result.spectra = analyse_run_spectra(study, result);
+    try {
+      add_measurement_noise(study, result);
+      result.spectra = analyse_run_spectra(study, result);
+    } catch (const InputError& e) {
+      // A run cut at the first x = l may leave too short an interval: that is this run's
+      // fate, not a fault of the study, so it is said and the run stays (invalid).
+      if (result.valid) throw;
+      result.notes.push_back(std::string("no spectra: ") + e.what());
+    }
     result.spectrum_seconds = seconds_since(spectrum_start);
   }
   return result;

@@ -24,13 +24,19 @@ struct RunResult {
   bool valid = true;                                 //!< false when some x reached l (policy `flag`)
   std::vector<std::string> notes;                    //!< plain-language warnings for the user
   ValidityReport validity;                           //!< the population's validity report (MODEL.md §4)
+  std::vector<double> measured_voltage_v;            //!< V plus the study's [noise], what the spectra saw (empty without [noise])
+  double noise_sigma_v = 0.0;                        //!< that noise's standard deviation [V]
   double tribology_seconds = 0.0;                    //!< wall time of the tribology [s]
   double circuit_seconds = 0.0;                      //!< wall time of the circuit [s]
   std::optional<SpectralResult> spectra;             //!< when the study has [spectrum]
   double spectrum_seconds = 0.0;                     //!< wall time of the spectral analysis [s]
 };
 
-//! Runs the study. Throws ModelError when x reaches l under policy `error`.
-RunResult run_study(const Study& study);
+struct RunOptions {
+  bool show_progress = true;  //!< progress bars on stderr (an ensemble runs many at once: off)
+};
+
+//! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`.
+RunResult run_study(const Study& study, const RunOptions& options = {});
 
 }  // namespace stengmc

@@ -1,0 +1,164 @@
+#include "ensemble/ensemble_runner.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include "core/build_info.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/progress.hpp"
+#include "core/random_stream.hpp"
+#include "ensemble/journal.hpp"
+#include "ensemble/run_realisation.hpp"
+#include "stats/ensemble_statistics.hpp"
+
+namespace stengmc {
+
+namespace {
+
+bool keeps_traces(const EnsembleSettings& settings, std::uint64_t realisation) {
+  const auto& t = settings.trace_realisations;
+  return std::find(t.begin(), t.end(), realisation) != t.end();
+}
+
+//! The running means the progress line shows, over the valid records so far.
+class RunningStatus {
+ public:
+  void add(const RealisationRecord& r) {
+    ++done_;
+    if (!r.valid) return;
+    ++valid_;
+    voltage_rms_ += r.scalar(Scalar::voltage_rms_v);
+    fft_identifiable_ += r.scalar(Scalar::fft_identifiable);
+    sliding_ += r.scalar(Scalar::n_sliding);
+  }
+  [[nodiscard]] std::string line() const {
+    if (valid_ == 0) return "valid 0/" + std::to_string(done_);
+    std::string out = "valid " + std::to_string(valid_) + "/" + std::to_string(done_) +
+                      "  mean V_rms " + format_number(voltage_rms_ / static_cast<double>(valid_)) + " V";
+    if (sliding_ > 0) out += "  FFT identified " + format_number(fft_identifiable_ / sliding_);
+    return out;
+  }
+
+ private:
+  std::size_t done_ = 0, valid_ = 0;
+  double voltage_rms_ = 0.0, fft_identifiable_ = 0.0, sliding_ = 0.0;
+};
+
+//! True when the target's 95 % CI half-width over the valid records with ids below `end`
+//! is within the target. Only those: a resumed journal may hold later ids, which an
+//! uninterrupted run would not have seen at this point.
+bool target_reached(const Study& study, const std::map<std::uint64_t, RealisationRecord>& done, std::uint64_t end) {
+  const EnsembleSettings& settings = *study.ensemble;
+  std::vector<double> values;
+  for (auto it = done.begin(); it != done.end() && it->first < end; ++it)
+    if (it->second.valid) values.push_back(it->second.scalar(*settings.target));
+  if (values.size() < 2) return false;
+  RandomEngine engine =
+      random_stream(study.seed, 0, StreamKind::bootstrap, static_cast<std::uint64_t>(*settings.target));
+  const Interval ci = mean_interval(values, engine);
+  return ci.known && ci.half_width() <= settings.target_half_width;
+}
+
+//! Runs `ids` in parallel; records go to the journal (if any) and `done`.
+void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, Journal* journal,
+               std::map<std::uint64_t, RealisationRecord>& done, Progress* progress, RunningStatus& status) {
+  std::vector<RealisationRecord> results(ids.size());
+  std::mutex mutex;
+  std::exception_ptr failure;
+  const auto count = static_cast<std::int64_t>(ids.size());
+  // Dynamic schedule: realisations differ in cost (contact count, stick phases).
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (std::int64_t k = 0; k < count; ++k) {
+    {
+      std::lock_guard lock(mutex);
+      if (failure) continue;
+    }
+    try {
+      const std::uint64_t id = ids[static_cast<std::size_t>(k)];
+      RealisationRecord record = run_realisation(study, id, keeps_traces(*study.ensemble, id));
+      if (journal) journal->append(record);
+      std::lock_guard lock(mutex);
+      status.add(record);
+      if (progress) {
+        progress->set_status(status.line());
+        progress->advance();
+      }
+      results[static_cast<std::size_t>(k)] = std::move(record);
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (RealisationRecord& r : results) {
+    const std::uint64_t id = r.realisation;
+    done.emplace(id, std::move(r));
+  }
+}
+
+}  // namespace
+
+std::uint64_t ensemble_identity_hash(const Study& study) {
+  std::uint64_t h = fnv1a64(study.text);
+  h = fnv1a64(std::string_view("\0surface\0", 9), h);
+  h = fnv1a64(study.surface_text, h);
+  h = fnv1a64(std::string_view("\0program\0", 9), h);
+  h = fnv1a64(program_version(), h);
+  return fnv1a64(git_revision(), h);
+}
+
+EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options) {
+  if (!study.ensemble) throw InputError(study.file + ": the study has no [ensemble] table");
+  const EnsembleSettings& settings = *study.ensemble;
+  const auto start = std::chrono::steady_clock::now();
+  EnsembleRun run;
+  run.requested = settings.realisations;
+  run.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  std::map<std::uint64_t, RealisationRecord> done;
+  RunningStatus status;
+
+  if (options.only) {
+    run_batch(study, {*options.only}, 1, nullptr, done, nullptr, status);
+  } else {
+    if (options.restart) std::filesystem::remove(journal_path);
+    Journal journal(journal_path, {ensemble_identity_hash(study), std::string("stengmc ") + program_version() + " (git " +
+                                                                       git_revision() + "), study " + study.file});
+    for (const RealisationRecord& r : journal.recovered())
+      if (r.realisation < settings.realisations) done.emplace(r.realisation, r);
+    run.resumed = done.size();
+    for (const auto& [id, r] : done) status.add(r);
+    std::optional<Progress> progress;
+    if (options.show_progress) {
+      progress.emplace("ensemble", settings.realisations);
+      progress->advance(done.size());
+    }
+    // Without a target, one batch of everything balances the threads best.
+    const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;
+    for (std::uint64_t first = 0; first < settings.realisations; first += batch) {
+      const std::uint64_t end = std::min(settings.realisations, first + batch);
+      std::vector<std::uint64_t> ids;
+      for (std::uint64_t id = first; id < end; ++id)
+        if (!done.count(id)) ids.push_back(id);
+      run_batch(study, ids, run.threads, &journal, done, progress ? &*progress : nullptr, status);
+      if (settings.target && end < settings.realisations && target_reached(study, done, end)) {
+        run.stopped_at_target = true;
+        // Records of later batches (recovered from a journal) are not part of this run.
+        done.erase(done.lower_bound(end), done.end());
+        break;
+      }
+    }
+  }
+  for (auto& [id, r] : done) run.records.push_back(std::move(r));
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace stengmc

@@ -1,0 +1,42 @@
+#pragma once
+//! The Monte Carlo runner: realisations of a study in parallel (OpenMP), each a unit of
+//! work computable from the study and its id alone, kept in a crash-safe journal so a
+//! killed run resumes where it stopped (README: ensembles).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ensemble/realisation_record.hpp"
+#include "io/study.hpp"
+
+namespace stengmc {
+
+struct EnsembleOptions {
+  int threads = 0;                     //!< 0: OpenMP's default (OMP_NUM_THREADS or the cores)
+  std::optional<std::uint64_t> only;   //!< run this realisation alone (no journal)
+  bool restart = false;                //!< discard an existing journal instead of resuming it
+  bool show_progress = true;           //!< progress bar with ETA and running statistics
+};
+
+struct EnsembleRun {
+  std::vector<RealisationRecord> records;  //!< every realisation run, by id
+  std::uint64_t requested = 0;             //!< [ensemble] realisations (the cap, with a target)
+  bool stopped_at_target = false;          //!< the target half-width was reached before the cap
+  std::size_t resumed = 0;                 //!< records recovered from an interrupted run
+  double seconds = 0.0;                    //!< wall time of this invocation [s]
+  int threads = 1;                         //!< threads used
+};
+
+//! Everything that determines an ensemble's results, hashed: the study and surface texts,
+//! the program version and git revision. A journal written under another hash is refused.
+std::uint64_t ensemble_identity_hash(const Study& study);
+
+//! Runs `study` (read without a realisation; it must have [ensemble]). Completed
+//! realisations are appended to the journal at `journal_path` as they finish; on success
+//! the caller writes the output and then removes the journal. Realisations are processed
+//! in batches of [ensemble] batch ids when a target is set, so the stopping point is the
+//! same for any number of threads.
+EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options);
+
+}  // namespace stengmc

@@ -1,0 +1,395 @@
+#include "ensemble/journal.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cerrno>
+#include <filesystem>
+#include <span>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include "core/error.hpp"
+
+namespace stengmc {
+
+namespace {
+
+constexpr std::string_view MAGIC = "STENGMCJ";
+constexpr std::uint32_t FORMAT_VERSION = 1;
+// Any length above this is corruption: a record is kilobytes, a traced one megabytes. Also
+// bounds what a damaged length can make us allocate.
+constexpr std::uint64_t MAX_PAYLOAD_BYTES = std::uint64_t{1} << 30;
+constexpr std::uint64_t LENGTH_BYTES = 4;
+constexpr std::uint64_t CHECKSUM_BYTES = 8;
+
+std::string system_message(int error) { return std::generic_category().message(error); }
+
+[[noreturn]] void throw_system(const std::string& path, const std::string& what, int error) {
+  throw Error(path + ": " + what + ": " + system_message(error));
+}
+
+std::string how_to_start_afresh(const std::string& path) {
+  return "To start afresh, delete " + path + " or run again with --restart.";
+}
+
+std::string hex(std::uint64_t value) {
+  std::ostringstream out;
+  out << "0x" << std::hex << value;
+  return out.str();
+}
+
+std::string quoted(const std::string& description) {
+  return description.empty() ? std::string("(no description)") : "\"" + description + "\"";
+}
+
+// ---------------------------------------------------------------- encoding
+
+class Encoder {
+ public:
+  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void u64(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void text(std::string_view s) {
+    u32(static_cast<std::uint32_t>(s.size()));
+    bytes_.append(s);
+  }
+  void doubles(std::span<const double> values) {
+    for (double v : values) f64(v);
+  }
+  void vector(const std::vector<double>& values) {
+    u64(values.size());
+    doubles(values);
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+//! Reads a payload whose checksum passed. Running out of bytes or a count that differs from
+//! this program's then means the file was written by another format, not torn: the
+//! caller's `malformed` throws the InputError.
+class Decoder {
+ public:
+  explicit Decoder(std::string_view bytes) : bytes_(bytes) {}
+  bool u8(std::uint8_t& v) {
+    if (left() < 1) return false;
+    v = static_cast<std::uint8_t>(bytes_[position_++]);
+    return true;
+  }
+  bool u32(std::uint32_t& v) {
+    std::uint64_t wide = 0;
+    if (!little_endian(4, wide)) return false;
+    v = static_cast<std::uint32_t>(wide);
+    return true;
+  }
+  bool u64(std::uint64_t& v) { return little_endian(8, v); }
+  bool text(std::string& s) {
+    std::uint32_t n = 0;
+    if (!u32(n) || left() < n) return false;
+    s.assign(bytes_.substr(position_, n));
+    position_ += n;
+    return true;
+  }
+  bool doubles(std::size_t n, double* out) {
+    if (left() / 8 < n) return false;  // before allocating anything of size n
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint64_t bits = 0;
+      little_endian(8, bits);
+      out[i] = std::bit_cast<double>(bits);
+    }
+    return true;
+  }
+  bool vector(std::vector<double>& values) {
+    std::uint64_t n = 0;
+    if (!u64(n) || left() / 8 < n) return false;
+    values.resize(n);
+    return doubles(n, values.data());
+  }
+  [[nodiscard]] std::size_t left() const { return bytes_.size() - position_; }
+
+ private:
+  bool little_endian(std::size_t width, std::uint64_t& v) {
+    if (left() < width) return false;
+    v = 0;
+    for (std::size_t i = 0; i < width; ++i)
+      v |= std::uint64_t{static_cast<unsigned char>(bytes_[position_ + i])} << (8 * i);
+    position_ += width;
+    return true;
+  }
+
+  std::string_view bytes_;
+  std::size_t position_ = 0;
+};
+
+//! The framed record: length, payload, checksum.
+std::string encode_frame(const RealisationRecord& record, const std::string& path) {
+  const std::size_t asperities = record.asperity_count();
+  for (const auto& column : record.asperities)
+    if (column.size() != asperities)
+      throw Error(path + ": realisation " + std::to_string(record.realisation) +
+                  ": asperity columns of different lengths cannot be journalled");
+  Encoder out;
+  out.u32(0);  // payload length, filled in below
+  out.u64(record.realisation);
+  out.u8(record.valid ? 1 : 0);
+  out.text(record.failure);
+  out.u32(static_cast<std::uint32_t>(SCALAR_COUNT));
+  out.doubles(record.scalars);
+  out.u32(static_cast<std::uint32_t>(ASPERITY_COLUMN_COUNT));
+  out.u64(asperities);
+  for (const auto& column : record.asperities) out.doubles(column);
+  out.vector(record.time_s);
+  out.vector(record.voltage_v);
+  out.vector(record.charge_c);
+
+  std::string& bytes = out.bytes();
+  const std::uint64_t payload = bytes.size() - LENGTH_BYTES;
+  if (payload > MAX_PAYLOAD_BYTES)
+    throw Error(path + ": the record of realisation " + std::to_string(record.realisation) + " is " +
+                std::to_string(payload) + " bytes, more than the journal's limit of 1 GiB per record");
+  for (std::size_t i = 0; i < LENGTH_BYTES; ++i) bytes[i] = static_cast<char>(payload >> (8 * i));
+  out.u64(fnv1a64(std::string_view(bytes).substr(LENGTH_BYTES)));
+  return bytes;
+}
+
+RealisationRecord decode_payload(std::string_view payload, const std::string& path, std::size_t index) {
+  const auto malformed = [&](const std::string& what) {
+    return InputError(path + ": record " + std::to_string(index + 1) + " " + what +
+                      ": the journal was written by a program with another record format. The program changed "
+                      "since the interrupted run, so its finished realisations cannot be reused. " +
+                      how_to_start_afresh(path));
+  };
+  Decoder in(payload);
+  RealisationRecord record;
+  std::uint8_t valid = 0;
+  std::uint32_t scalars = 0, columns = 0;
+  std::uint64_t asperities = 0;
+  if (!in.u64(record.realisation) || !in.u8(valid) || valid > 1 || !in.text(record.failure) || !in.u32(scalars))
+    throw malformed("does not parse");
+  record.valid = valid == 1;
+  if (scalars != SCALAR_COUNT)
+    throw malformed("holds " + std::to_string(scalars) + " scalars where this program has " +
+                    std::to_string(SCALAR_COUNT));
+  if (!in.doubles(SCALAR_COUNT, record.scalars.data()) || !in.u32(columns)) throw malformed("does not parse");
+  if (columns != ASPERITY_COLUMN_COUNT)
+    throw malformed("holds " + std::to_string(columns) + " asperity columns where this program has " +
+                    std::to_string(ASPERITY_COLUMN_COUNT));
+  if (!in.u64(asperities) || in.left() / 8 / ASPERITY_COLUMN_COUNT < asperities) throw malformed("does not parse");
+  for (auto& column : record.asperities) {
+    column.resize(asperities);
+    in.doubles(asperities, column.data());
+  }
+  if (!in.vector(record.time_s) || !in.vector(record.voltage_v) || !in.vector(record.charge_c) || in.left() != 0)
+    throw malformed("does not parse");
+  return record;
+}
+
+// ---------------------------------------------------------------- file access
+
+//! Writes all of `bytes` at `offset`, retrying short writes and interruptions; false with
+//! errno set on failure.
+bool write_all(int fd, std::uint64_t offset, std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::pwrite(fd, bytes.data(), bytes.size(), static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      return false;
+    }
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+    offset += static_cast<std::uint64_t>(n);
+  }
+  return true;
+}
+
+//! Reads exactly `size` bytes at `offset` (the caller checked the file is long enough).
+std::string read_at(int fd, std::uint64_t offset, std::uint64_t size, const std::string& path) {
+  std::string bytes(size, '\0');
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::pread(fd, bytes.data() + done, size - done, static_cast<off_t>(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw_system(path, "cannot read the journal", errno);
+    if (n == 0) throw Error(path + ": the journal shrank while being read (is another program writing it?)");
+    done += static_cast<std::size_t>(n);
+  }
+  return bytes;
+}
+
+std::uint64_t little_endian(std::string_view bytes) {
+  std::uint64_t v = 0;
+  for (std::size_t i = 0; i < bytes.size(); ++i) v |= std::uint64_t{static_cast<unsigned char>(bytes[i])} << (8 * i);
+  return v;
+}
+
+//! Makes a new directory entry durable. Best effort: a filesystem that cannot sync a
+//! directory only risks losing the whole journal in a power cut, which costs recomputation,
+//! never a wrong result.
+void sync_directory_of(const std::string& path) {
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = std::filesystem::current_path();
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis) {
+  std::uint64_t hash = basis;
+  for (const char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+// ---------------------------------------------------------------- Journal
+
+Journal::Journal(std::string path, const JournalIdentity& identity) : path_(std::move(path)) {
+  const auto parent = std::filesystem::path(path_).parent_path();
+  std::error_code ignored;  // a folder that cannot be made shows up as the open failing
+  if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd_ < 0 && errno == ENOENT) {
+    create(identity);
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
+  }
+  if (fd_ < 0) throw_system(path_, "cannot open the journal", errno);
+  try {
+    // The lock goes with the process, so a killed run never leaves a stale one. Only a live
+    // holder is refused; a filesystem without locks is used unlocked.
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+      throw Error(path_ + ": the journal is in use by another running stengmc (one run per journal)");
+    load(identity);
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void Journal::create(const JournalIdentity& identity) {
+  if (identity.description.size() > MAX_PAYLOAD_BYTES)
+    throw Error(path_ + ": the journal description is longer than 1 GiB");
+  Encoder header;
+  header.bytes().append(MAGIC);
+  header.u32(FORMAT_VERSION);
+  header.u64(identity.study_hash);
+  header.text(identity.description);
+
+  // Written and synced under a temporary name, then linked into place: the journal appears
+  // with its whole header or not at all. link() (unlike rename) never replaces a journal
+  // another run created meanwhile; that one is then opened and its identity checked.
+  const std::string temporary = path_ + "." + std::to_string(::getpid()) + ".tmp";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw_system(temporary, "cannot create the journal (does the folder exist and is it writable?)", errno);
+  if (!write_all(fd, 0, header.bytes()) || ::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    throw_system(temporary, "cannot write the journal header", error);
+  }
+  ::close(fd);
+  if (::link(temporary.c_str(), path_.c_str()) != 0 && errno != EEXIST &&
+      ::rename(temporary.c_str(), path_.c_str()) != 0) {  // a filesystem without hard links
+    const int error = errno;
+    ::unlink(temporary.c_str());
+    throw_system(path_, "cannot create the journal", error);
+  }
+  ::unlink(temporary.c_str());
+  sync_directory_of(path_);
+}
+
+void Journal::load(const JournalIdentity& identity) {
+  struct stat status {};
+  if (::fstat(fd_, &status) != 0) throw_system(path_, "cannot read the journal", errno);
+  const auto file_size = static_cast<std::uint64_t>(status.st_size);
+
+  // Header. It was complete before the file got its name, so anything wrong with it is
+  // not a torn write: refuse rather than overwrite what may be someone else's file.
+  const std::uint64_t fixed = MAGIC.size() + 4 + 8 + 4;
+  if (file_size < MAGIC.size() || read_at(fd_, 0, MAGIC.size(), path_) != MAGIC)
+    throw InputError(path_ + ": not a stengmc journal (it does not start with " + std::string(MAGIC) +
+                     "); refusing to overwrite it. " + how_to_start_afresh(path_));
+  if (file_size < fixed) throw InputError(path_ + ": the journal header is damaged. " + how_to_start_afresh(path_));
+  const std::string head = read_at(fd_, 0, fixed, path_);
+  const auto version = little_endian(std::string_view(head).substr(MAGIC.size(), 4));
+  const auto study_hash = little_endian(std::string_view(head).substr(MAGIC.size() + 4, 8));
+  const auto description_size = little_endian(std::string_view(head).substr(MAGIC.size() + 12, 4));
+  if (version != FORMAT_VERSION)
+    throw InputError(path_ + ": journal format version " + std::to_string(version) + ", this program reads version " +
+                     std::to_string(FORMAT_VERSION) + ". " + how_to_start_afresh(path_));
+  if (file_size - fixed < description_size)
+    throw InputError(path_ + ": the journal header is damaged. " + how_to_start_afresh(path_));
+  const std::string description = read_at(fd_, fixed, description_size, path_);
+  if (study_hash != identity.study_hash)
+    throw InputError(path_ + ": this journal belongs to another computation: it was written for " +
+                     quoted(description) + " (study hash " + hex(study_hash) + "), this run is " +
+                     quoted(identity.description) + " (study hash " + hex(identity.study_hash) +
+                     "). The study (or the program) changed since the interrupted run, so its finished "
+                     "realisations cannot be reused. " + how_to_start_afresh(path_));
+
+  // Records, up to the first one that is not whole and intact: that is where the run was
+  // killed (or the disk went bad), and nothing after it can be framed.
+  std::uint64_t offset = fixed + description_size;
+  while (file_size - offset >= LENGTH_BYTES) {
+    const std::uint64_t length = little_endian(read_at(fd_, offset, LENGTH_BYTES, path_));
+    if (length > MAX_PAYLOAD_BYTES || file_size - offset - LENGTH_BYTES < length + CHECKSUM_BYTES) break;
+    const std::string frame = read_at(fd_, offset + LENGTH_BYTES, length + CHECKSUM_BYTES, path_);
+    const std::string_view payload = std::string_view(frame).substr(0, length);
+    if (fnv1a64(payload) != little_endian(std::string_view(frame).substr(length))) break;
+    recovered_.push_back(decode_payload(payload, path_, recovered_.size()));
+    offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
+  }
+  // Cut only after every check passed, so a refused journal is left as it was.
+  if (offset < file_size && (::ftruncate(fd_, static_cast<off_t>(offset)) != 0 || ::fsync(fd_) != 0))
+    throw_system(path_, "cannot cut the torn record off the journal", errno);
+  size_ = offset;
+}
+
+void Journal::append(const RealisationRecord& record) {
+  const std::string frame = encode_frame(record, path_);  // outside the lock: threads encode in parallel
+  const std::lock_guard lock(mutex_);
+  if (fd_ < 0) throw Error(path_ + ": the journal was removed; cannot append realisation " +
+                           std::to_string(record.realisation));
+  if (broken_)
+    throw Error(path_ + ": an earlier append failed and could not be undone; not appending realisation " +
+                std::to_string(record.realisation));
+  if (!write_all(fd_, size_, frame) || ::fsync(fd_) != 0) {
+    const int error = errno;
+    // Cut the partial record so the file ends on a whole one again. If even that fails,
+    // what lies past the last whole record is unknown (after a failed fsync the kernel may
+    // have dropped pages), so stop appending; the next opening cuts the tail.
+    if (::ftruncate(fd_, static_cast<off_t>(size_)) != 0) broken_ = true;
+    throw_system(path_, "cannot append realisation " + std::to_string(record.realisation) + " to the journal", error);
+  }
+  size_ += frame.size();
+}
+
+void Journal::remove() {
+  const std::lock_guard lock(mutex_);
+  if (fd_ < 0) return;
+  // Unlinked while still locked, so no other run opens it half-way through.
+  if (::unlink(path_.c_str()) != 0 && errno != ENOENT) throw_system(path_, "cannot delete the journal", errno);
+  ::close(fd_);
+  fd_ = -1;
+}
+
+}  // namespace stengmc

@@ -1,0 +1,96 @@
+#pragma once
+//! Crash-safe store of finished realisations, so a killed ensemble run resumes where it
+//! stopped. Each record is appended and fsync'ed as its realisation finishes; a run killed
+//! (even by SIGKILL or a power cut) loses at most the record being written, which the next
+//! opening cuts off. The final HDF5 output is assembled from the records, then the journal
+//! is removed.
+//!
+//! File format, version 1. Integers are little-endian, fixed width, written byte by byte;
+//! doubles are their IEEE-754 bit pattern as a u64 (std::bit_cast), so files are portable
+//! between machines and values come back bitwise.
+//!
+//!   header:  "STENGMCJ" (8 bytes) | u32 format version (1)
+//!            | u64 study hash | u32 n | n bytes description (JournalIdentity)
+//!   records: u32 payload length | payload | u64 fnv1a64(payload)
+//!   payload: u64 realisation | u8 valid (0/1) | u32 n | n bytes failure
+//!            | u32 SCALAR_COUNT | SCALAR_COUNT doubles, in Scalar order
+//!            | u32 ASPERITY_COLUMN_COUNT | u64 asperity count a
+//!            | ASPERITY_COLUMN_COUNT × a doubles, column after column (AsperityColumn order)
+//!            | u64 n | n doubles time_s | u64 n | n doubles voltage_v | u64 n | n doubles charge_c
+//!
+//! Recovery: records are read in file order up to the first one that is short, declares
+//! more than 1 GiB, or fails its checksum. That record and everything after it are cut off
+//! (the file is truncated): once one frame is wrong, the lengths that follow cannot be
+//! trusted. Appends only ever write at the end, so a kill can only tear the last record.
+//! A record that passes its checksum but does not parse as this program's record (other
+//! SCALAR_COUNT or ASPERITY_COLUMN_COUNT) means the format changed: an InputError, never
+//! silent loss. The header is written to a temporary file and linked into place, so a
+//! journal either does not exist or has a complete header.
+//!
+//! One run at a time: the file is locked (flock) while open; a second Journal on the same
+//! file throws Error. Records are not de-duplicated: the caller skips recovered
+//! realisations and appends each remaining one once.
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ensemble/realisation_record.hpp"
+
+namespace stengmc {
+
+//! Identity of the computation a journal belongs to; a resume with a different identity is refused.
+struct JournalIdentity {
+  //! Hash of everything that determines the results (computed by the caller, e.g. with fnv1a64).
+  //! The only thing compared on resume.
+  std::uint64_t study_hash = 0;
+  //! Human text stored in the header (program version, study file) for messages; not compared.
+  std::string description;
+};
+
+//! 64-bit FNV-1a over bytes (Fowler, Noll & Vo; offset basis 0xcbf29ce484222325, prime
+//! 0x100000001b3). Chainable: pass the previous hash as `basis`.
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis = 0xcbf29ce484222325ULL);
+
+//! An open journal file. Errors (disk full, permission) throw Error naming the file and the
+//! system's reason; an unusable existing file (another identity, another record format, not
+//! a journal) throws InputError saying how to start afresh.
+class Journal {
+ public:
+  //! Opens `path` for appending, creating it (with its header) if it does not exist. An
+  //! existing file's intact records are read and a torn or corrupt tail is cut off; if its
+  //! study hash differs from `identity.study_hash`, throws InputError naming the file and
+  //! both descriptions (the file is left untouched).
+  Journal(std::string path, const JournalIdentity& identity);
+  //! Closes the file (does not delete it).
+  ~Journal();
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  //! The records found at opening, in file order.
+  [[nodiscard]] const std::vector<RealisationRecord>& recovered() const { return recovered_; }
+
+  //! Appends one record durably (framed record written, then fsync) before returning.
+  //! Thread-safe: OpenMP threads call it as they finish. On failure the file is cut back to
+  //! its last whole record and Error is thrown.
+  void append(const RealisationRecord& record);
+
+  //! Deletes the file (after the final output was committed); later appends throw.
+  void remove();
+
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+ private:
+  void create(const JournalIdentity& identity);
+  void load(const JournalIdentity& identity);
+
+  std::string path_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;  //!< end of the last whole record [bytes]
+  bool broken_ = false;     //!< a failed append could not be cut back: refuse further appends
+  std::mutex mutex_;
+  std::vector<RealisationRecord> recovered_;
+};
+
+}  // namespace stengmc

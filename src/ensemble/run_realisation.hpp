@@ -1,0 +1,20 @@
+#pragma once
+//! The unit of work of an ensemble: realisation r of a study, run end to end (surface ->
+//! tribology -> circuit -> noise -> spectra) and reduced to its record. It depends on the
+//! study and r alone, so any thread, process or machine can compute it.
+#include <cstdint>
+
+#include "ensemble/realisation_record.hpp"
+#include "io/study.hpp"
+
+namespace stengmc {
+
+//! @param base the study read without drawing a realisation (read_study(file, nullopt))
+//! @param keep_traces also keep the time, voltage and charge traces
+//! A realisation whose model breaks (ModelError: x reaching l under `error`, an integrator
+//! failure, nothing in contact, a line above Nyquist) or whose run is flagged invalid
+//! (x reaching l under `flag`) gives an invalid record saying why. InputErrors propagate:
+//! they are the study's, and would fail every realisation alike.
+RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces);
+
+}  // namespace stengmc

@@ -1,0 +1,22 @@
+#pragma once
+//! Measurement noise on the voltage a spectral analysis sees (README: [noise]).
+#include <span>
+#include <vector>
+
+#include "core/random_stream.hpp"
+
+namespace stengmc {
+
+struct NoisyVoltage {
+  std::vector<double> voltage_v;  //!< the voltage plus white Gaussian noise [V]
+  double sigma_v = 0.0;           //!< the noise's standard deviation [V]
+};
+
+//! Adds white Gaussian noise (one Boost normal draw per sample, in order, from `engine`)
+//! with sigma^2 = P / 10^(snr_db/10), P the mean square of the mean-removed voltage over
+//! samples [first, first + count). A voltage without power there gets no noise (sigma 0):
+//! an SNR of nothing is undefined.
+NoisyVoltage add_white_noise(std::span<const double> voltage_v, std::size_t first, std::size_t count, double snr_db,
+                             RandomEngine& engine);
+
+}  // namespace stengmc

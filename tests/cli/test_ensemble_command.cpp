@@ -1,0 +1,157 @@
+// Ensembles through the command line (README: ensembles): the datasets are bitwise
+// identical for 1 and 2 threads and when a realisation is re-run alone (--only), and a
+// run killed with SIGKILL and resumed gives the datasets of an uninterrupted run.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+#include <vector>
+
+#include "ensemble/journal.hpp"
+#include "ensemble/realisation_record.hpp"
+#include "io/hdf5_file.hpp"
+#include "support/cli_runner.hpp"
+
+extern char** environ;
+
+namespace stengmc {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDir;
+
+// ~24 asperities of the shipped GW surface, Model 2 at v_b = 10 m/s, FFT spectra; about
+// 0.1 s of CPU per realisation. One realisation in ~20 flags x = l: invalid records too.
+std::string study_text(int realisations, const std::string& extra = "") {
+  return "seed = 3\nduration_s = 50e-6\nsample_rate_hz = 100e6\n"
+         "[model]\nkind = \"model2\"\nbelt_velocity_m_per_s = 10\n"
+         "[surface]\nfile = \"" + std::string(STENGMC_SOURCE_DIR) + "/surfaces/pet_on_steel_gw.toml\"\n"
+         "[domain]\npolicy = \"flag\"\n"
+         "[spectrum]\nwindow = \"hann\"\nstart_s = 5e-6\nprominence_over_floor = 10\nmin_frequency_hz = 100e3\n"
+         "high_resolution = false\n"
+         "[ensemble]\nrealisations = " + std::to_string(realisations) + "\n" + extra;
+}
+
+//! Every per-realisation and per-asperity dataset, and the summary means, of a file.
+std::vector<std::pair<std::string, std::vector<double>>> datasets(const std::string& path) {
+  const Hdf5Reader f(path);
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  for (const char* name : {"/realisations/realisation", "/realisations/valid", "/realisations/asperity_offset"})
+    out.emplace_back(name, f.vector(name));
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    const std::string name(scalar_info(static_cast<Scalar>(k)).name);
+    out.emplace_back("/realisations/" + name, f.vector("/realisations/" + name));
+    for (const char* stat : {"mean", "mean_low", "mean_high", "std", "median_low", "p95_high"})
+      out.emplace_back("/summary/" + name + "/" + stat, f.vector("/summary/" + name + "/" + stat));
+  }
+  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
+    const std::string name(column_info(static_cast<AsperityColumn>(c)).name);
+    out.emplace_back("/asperities/" + name, f.vector("/asperities/" + name));
+  }
+  return out;
+}
+
+void expect_bitwise_equal_files(const std::string& a, const std::string& b) {
+  const auto x = datasets(a), y = datasets(b);
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ASSERT_EQ(x[i].second.size(), y[i].second.size()) << x[i].first;
+    EXPECT_EQ(std::memcmp(x[i].second.data(), y[i].second.data(), x[i].second.size() * sizeof(double)), 0) << x[i].first;
+  }
+}
+
+TEST(EnsembleCommand, BitwiseIdenticalForOneAndTwoThreadsAndForARealisationAlone) {
+  ScratchDir scratch("ensemble-threads");
+  const std::string study = scratch.write("study.toml", study_text(8));
+  const auto one = run_cli("run " + study + " -j 1 -o " + scratch.file("one.h5"), scratch);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const auto two = run_cli("run " + study + " -j 2 -o " + scratch.file("two.h5"), scratch);
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  expect_bitwise_equal_files(scratch.file("one.h5"), scratch.file("two.h5"));
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("two.h5.journal"))) << "the journal outlives a finished run";
+
+  // Realisation 5 alone: its row and asperity slice equal the batch's.
+  const auto alone = run_cli("run " + study + " --only 5 -o " + scratch.file("alone.h5"), scratch);
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  const Hdf5Reader batch(scratch.file("two.h5")), single(scratch.file("alone.h5"));
+  EXPECT_EQ(single.vector("/realisations/realisation"), std::vector<double>{5.0});
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    const std::string name = "/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name);
+    const double a = batch.vector(name)[5], b = single.vector(name)[0];
+    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << name;
+  }
+  const std::vector<double> offsets = batch.vector("/realisations/asperity_offset");
+  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
+    const std::string name = "/asperities/" + std::string(column_info(static_cast<AsperityColumn>(c)).name);
+    const std::vector<double> all = batch.vector(name), mine = single.vector(name);
+    const std::vector<double> slice(all.begin() + static_cast<long>(offsets[5]), all.begin() + static_cast<long>(offsets[6]));
+    ASSERT_EQ(slice.size(), mine.size()) << name;
+    EXPECT_EQ(std::memcmp(slice.data(), mine.data(), mine.size() * sizeof(double)), 0) << name;
+  }
+}
+
+TEST(EnsembleCommand, KilledRunResumesToTheUninterruptedDatasets) {
+  ScratchDir scratch("ensemble-resume");
+  const std::string study = scratch.write("study.toml", study_text(40, "trace_realisations = []\n"));
+  const auto whole = run_cli("run " + study + " -j 2 -o " + scratch.file("whole.h5"), scratch);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+
+  // Start the same run, let a few realisations reach the journal, then SIGKILL it.
+  const std::string out = scratch.file("killed.h5"), journal = out + ".journal";
+  std::vector<std::string> args{STENGMC_BINARY, "run", study, "-j", "2", "-o", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, scratch.file("killed.log").c_str(), O_WRONLY | O_CREAT, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, scratch.file("killed.err").c_str(), O_WRONLY | O_CREAT, 0644);
+  ASSERT_EQ(posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // A record of ~24 asperities is ~2.5 kB: wait for several, well before the 40th.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::error_code ec;
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(std::filesystem::exists(journal) && std::filesystem::file_size(journal, ec) > 15'000))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed; make it longer";
+  ASSERT_FALSE(std::filesystem::exists(out)) << "a killed run left an output file";
+  ASSERT_TRUE(std::filesystem::exists(journal));
+
+  const auto resumed = run_cli("run " + study + " -j 2 -o " + out, scratch);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from an interrupted run"), std::string::npos) << resumed.output;
+  expect_bitwise_equal_files(scratch.file("whole.h5"), out);
+
+}
+
+TEST(EnsembleCommand, AJournalOfAnotherStudyIsRefusedUnlessRestarted) {
+  // A journal left by a different study (another hash) must not be mixed into this run.
+  ScratchDir scratch("ensemble-changed");
+  const std::string study = scratch.write("study.toml", study_text(2, "trace_realisations = []\n"));
+  const std::string out = scratch.file("out.h5");
+  { Journal stale(out + ".journal", {.study_hash = 12345, .description = "an older study"}); }
+  const auto refused = run_cli("run " + study + " -o " + out, scratch);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find(out + ".journal"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--restart"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto restarted = run_cli("run " + study + " --restart -o " + out, scratch);
+  EXPECT_EQ(restarted.exit_code, 0) << restarted.output;
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace stengmc
