@@ -5,40 +5,83 @@
 #include "core/error.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
+#include "ensemble/sweep.hpp"
 #include "io/ensemble_file.hpp"
 
 namespace stengmc::app {
 
+namespace {
+
+std::string default_output(const Study& study, const EnsembleCommandOptions& options) {
+  if (!options.only) return study.output_file;
+  // --only writes one realisation: never over the full ensemble's result.
+  const std::filesystem::path out(study.output_file);
+  return (out.parent_path() / (out.stem().string() + "_r" + std::to_string(*options.only) + ".h5")).string();
+}
+
+void print_header(const Study& study, std::size_t grid_points) {
+  const EnsembleSettings& e = *study.ensemble;
+  std::printf("stengmc run %s: ensemble of %llu realisations", study.file.c_str(),
+              static_cast<unsigned long long>(e.realisations));
+  if (e.target)
+    std::printf(" (or fewer: stop when the 95 %% CI half-width of mean %s <= %g)", std::string(scalar_info(*e.target).name).c_str(),
+                e.target_half_width);
+  if (grid_points > 1) std::printf(" at each of %zu grid points", grid_points);
+  std::printf(", seed %llu\n", static_cast<unsigned long long>(study.seed));
+  if (!study.title.empty()) std::printf("  %s\n", study.title.c_str());
+}
+
+//! One line per grid point: the few statistics a sweep is usually about.
+std::string format_grid_table(const std::vector<GridPoint>& grid) {
+  std::string out = "  point  parameters                       valid     V_rms [V] mean [95 % CI]         "
+                    "final charge [C]  FFT pooled ratio [95 % CI]\n";
+  char line[400];
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    const EnsembleSummary& s = grid[g].summary;
+    const Interval& v = s.scalars[static_cast<std::size_t>(Scalar::voltage_rms_v)].mean;
+    const Interval& q = s.scalars[static_cast<std::size_t>(Scalar::final_charge_c)].mean;
+    const Interval& r = s.fft_pooled_ratio;
+    std::snprintf(line, sizeof line, "  %5zu  %-32s %4zu/%-4zu %-10.4g [%.4g, %.4g]  %-16.4g  %.3f [%.3f, %.3f]\n", g + 1,
+                  describe_grid_point(grid[g], true).c_str(), s.valid, s.realisations, v.estimate, v.low, v.high,
+                  q.estimate, r.estimate, r.low, r.high);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace
+
 void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
                         const EnsembleCommandOptions& options) {
-  std::string out = out_option;
-  if (out.empty()) {
-    out = study.output_file;
-    // --only writes one realisation: never over the full ensemble's result.
-    if (options.only)
-      out = (std::filesystem::path(out).parent_path() /
-             (std::filesystem::path(out).stem().string() + "_r" + std::to_string(*options.only) + ".h5"))
-                .string();
+  const std::string out = out_option.empty() ? default_output(study, options) : out_option;
+  std::vector<GridPoint> grid = prepare_grid(study);
+  print_header(study, grid.size());
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    const std::string journal = journal_path(out, g, grid.size());
+    if (!options.only && !options.restart && std::filesystem::exists(journal))
+      std::printf("  resuming the interrupted run recorded in %s\n", journal.c_str());
   }
-  const std::string journal = out + ".journal";
-  const EnsembleSettings& e = *study.ensemble;
-  std::printf("stengmc run %s: ensemble of %llu realisations%s, seed %llu\n", study.file.c_str(),
-              static_cast<unsigned long long>(e.realisations),
-              e.target ? (" (or fewer: stop when the 95 % CI half-width of mean " + std::string(scalar_info(*e.target).name) +
-                          " <= " + std::to_string(e.target_half_width) + ")")
-                             .c_str()
-                       : "",
-              static_cast<unsigned long long>(study.seed));
-  if (!study.title.empty()) std::printf("  %s\n", study.title.c_str());
-  if (!options.only && !options.restart && std::filesystem::exists(journal))
-    std::printf("  resuming the interrupted run recorded in %s\n", journal.c_str());
   std::fflush(stdout);
-  const EnsembleRun run = run_ensemble(study, journal, {.threads = options.threads, .only = options.only,
-                                                        .restart = options.restart, .show_progress = true});
-  const EnsembleSummary summary = summarise_ensemble(run.records, study.seed);
-  write_ensemble_file(out, study, run, summary);
-  if (!options.only) std::filesystem::remove(journal);
-  std::printf("%s", format_ensemble_summary(summary, run).c_str());
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
+                                .show_progress = true};
+    if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
+    grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
+    grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);
+  }
+  write_ensemble_file(out, study, grid);
+  if (!options.only)
+    for (std::size_t g = 0; g < grid.size(); ++g) std::filesystem::remove(journal_path(out, g, grid.size()));
+  if (grid.size() == 1) {
+    std::printf("%s", format_ensemble_summary(grid[0].summary, grid[0].run).c_str());
+  } else {
+    std::printf("%s", format_grid_table(grid).c_str());
+    std::size_t invalid = 0;
+    for (const GridPoint& point : grid) invalid += point.summary.invalid.size();
+    if (invalid > 0)
+      std::printf("%zu invalid realisations in all, kept out of the statistics (which and why: /realisations/failure)\n",
+                  invalid);
+  }
   std::printf("wrote %s\n", out.c_str());
   if (figures && render_figures(out) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -110,6 +111,12 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
   std::uint64_t h = fnv1a64(study.text);
   h = fnv1a64(std::string_view("\0surface\0", 9), h);
   h = fnv1a64(study.surface_text, h);
+  for (const ParameterOverride& o : study.overrides) {
+    h = fnv1a64(std::string_view("\0override\0", 10), h);
+    h = fnv1a64(o.parameter, h);
+    const auto bits = std::bit_cast<std::uint64_t>(o.value);
+    h = fnv1a64(std::string_view(reinterpret_cast<const char*>(&bits), sizeof bits), h);
+  }
   h = fnv1a64(std::string_view("\0program\0", 9), h);
   h = fnv1a64(program_version(), h);
   return fnv1a64(git_revision(), h);
@@ -137,7 +144,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
     for (const auto& [id, r] : done) status.add(r);
     std::optional<Progress> progress;
     if (options.show_progress) {
-      progress.emplace("ensemble", settings.realisations);
+      progress.emplace(options.progress_label, settings.realisations);
       progress->advance(done.size());
     }
     // Without a target, one batch of everything balances the threads best.

@@ -39,7 +39,40 @@ EnsembleSettings read_ensemble_settings(TomlTable& t) {
       s.trace_realisations.push_back(static_cast<std::uint64_t>(v));
     }
   }
+  std::size_t grid = 1;
+  for (TomlTable& axis : t.table_array("sweep")) {
+    SweepAxis a;
+    a.parameter = axis.string("parameter", "");
+    if (a.parameter.empty())
+      axis.fail("parameter", "is missing: the dotted key to vary, e.g. \"model.belt_velocity_m_per_s\"");
+    if (a.parameter.rfind("ensemble.", 0) == 0 || a.parameter == "seed")
+      axis.fail("parameter", "= \"" + a.parameter + "\" cannot be swept (it defines the ensemble itself)");
+    a.values = axis.number_list("values");
+    if (a.values.empty()) axis.fail("values", "is missing or empty: the values the parameter takes");
+    for (const SweepAxis& other : s.sweep)
+      if (other.parameter == a.parameter) axis.fail("parameter", "= \"" + a.parameter + "\" is swept twice");
+    grid *= a.values.size();
+    if (grid > MAX_GRID_POINTS)
+      axis.fail("values", "makes the grid " + std::to_string(grid) + " points, above the limit of " +
+                              std::to_string(MAX_GRID_POINTS));
+    s.sweep.push_back(std::move(a));
+  }
   return s;
+}
+
+std::size_t EnsembleSettings::grid_size() const {
+  std::size_t size = 1;
+  for (const SweepAxis& axis : sweep) size *= axis.values.size();
+  return size;
+}
+
+std::vector<double> EnsembleSettings::grid_values(std::size_t point) const {
+  std::vector<double> values(sweep.size());
+  for (std::size_t a = sweep.size(); a-- > 0;) {
+    values[a] = sweep[a].values[point % sweep[a].values.size()];
+    point /= sweep[a].values.size();
+  }
+  return values;
 }
 
 NoiseSettings read_noise_settings(TomlTable& t) {

@@ -1,6 +1,7 @@
 #pragma once
 //! The [ensemble] and [noise] tables of a study (README: ensembles).
 #include <cstdint>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -8,6 +9,13 @@
 #include "io/toml_reader.hpp"
 
 namespace stengmc {
+
+//! One axis of a parameter sweep: a dotted key of the study ("model.belt_velocity_m_per_s";
+//! "surface.<table>.<key>" reaches into a surface file the study names) and its values.
+struct SweepAxis {
+  std::string parameter;
+  std::vector<double> values;
+};
 
 //! How many realisations, and which keep their traces.
 struct EnsembleSettings {
@@ -21,7 +29,19 @@ struct EnsembleSettings {
   std::uint64_t batch = 64;
   //! Realisations whose time, voltage and charge traces are written.
   std::vector<std::uint64_t> trace_realisations{0};
+  //! [[ensemble.sweep]] axes: every combination of their values (the first axis varying
+  //! slowest) is a grid point, each an ensemble of the same realisation ids (common random
+  //! numbers: differences between grid points are not blurred by different draws).
+  std::vector<SweepAxis> sweep;
+
+  //! Grid points: the product of the axes' sizes (1 without a sweep).
+  [[nodiscard]] std::size_t grid_size() const;
+  //! The value of each axis at grid point `point`.
+  [[nodiscard]] std::vector<double> grid_values(std::size_t point) const;
 };
+
+//! Most grid points a sweep may have.
+inline constexpr std::size_t MAX_GRID_POINTS = 10'000;
 
 //! Measurement noise added to the voltage before the spectral analysis (MODEL.md §3).
 struct NoiseSettings {

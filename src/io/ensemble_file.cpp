@@ -1,6 +1,7 @@
 #include "io/ensemble_file.hpp"
 
 #include <cstdint>
+#include <functional>
 
 #include "io/hdf5_file.hpp"
 #include "io/run_file.hpp"
@@ -9,93 +10,143 @@ namespace stengmc {
 
 namespace {
 
-void write_realisations(Hdf5Writer& f, const EnsembleRun& run) {
-  std::vector<std::int64_t> ids, valid, offsets{0};
-  std::vector<std::string> failures;
-  for (const RealisationRecord& r : run.records) {
-    ids.push_back(static_cast<std::int64_t>(r.realisation));
-    valid.push_back(r.valid ? 1 : 0);
-    failures.push_back(r.failure);
-    offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
+void write_grid(Hdf5Writer& f, const Study& base, const std::vector<GridPoint>& grid) {
+  const EnsembleSettings& e = *base.ensemble;
+  if (e.sweep.empty()) return;
+  std::vector<std::string> names;
+  for (const SweepAxis& axis : e.sweep) names.push_back(axis.parameter);
+  f.write("/grid/parameter", names, "text");
+  std::vector<std::vector<double>> values;
+  for (const GridPoint& point : grid) {
+    values.emplace_back();
+    for (const ParameterOverride& o : point.overrides) values.back().push_back(o.value);
   }
+  f.write("/grid/values", values, "as each parameter");
+}
+
+void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
+  std::vector<std::int64_t> points, ids, valid, offsets{0};
+  std::vector<std::string> failures;
+  std::vector<const RealisationRecord*> records;
+  for (std::size_t g = 0; g < grid.size(); ++g)
+    for (const RealisationRecord& r : grid[g].run.records) {
+      points.push_back(static_cast<std::int64_t>(g));
+      ids.push_back(static_cast<std::int64_t>(r.realisation));
+      valid.push_back(r.valid ? 1 : 0);
+      failures.push_back(r.failure);
+      offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
+      records.push_back(&r);
+    }
+  f.write("/realisations/grid_point", points, "index");
   f.write("/realisations/realisation", ids, "index");
   f.write("/realisations/valid", valid, "1");
   f.write("/realisations/failure", failures, "text");
   f.write("/realisations/asperity_offset", offsets, "index");
   for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
     std::vector<double> values;
-    for (const RealisationRecord& r : run.records) values.push_back(r.scalars[k]);
+    for (const RealisationRecord* r : records) values.push_back(r->scalars[k]);
     const ScalarInfo& info = scalar_info(static_cast<Scalar>(k));
     f.write("/realisations/" + std::string(info.name), values, info.unit);
   }
   for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
     std::vector<double> values;
-    for (const RealisationRecord& r : run.records) values.insert(values.end(), r.asperities[c].begin(), r.asperities[c].end());
+    for (const RealisationRecord* r : records) values.insert(values.end(), r->asperities[c].begin(), r->asperities[c].end());
     const ScalarInfo& info = column_info(static_cast<AsperityColumn>(c));
     f.write("/asperities/" + std::string(info.name), values, info.unit);
   }
 }
 
-void write_traces(Hdf5Writer& f, const EnsembleRun& run) {
-  for (const RealisationRecord& r : run.records) {
-    if (r.time_s.empty()) continue;
-    const std::string g = "/traces/realisation_" + std::to_string(r.realisation);
-    f.write(g + "/time", r.time_s, "s");
-    f.write(g + "/voltage", r.voltage_v, "V");
-    f.write(g + "/charge", r.charge_c, "C");
+void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
+  for (std::size_t g = 0; g < grid.size(); ++g)
+    for (const RealisationRecord& r : grid[g].run.records) {
+      if (r.time_s.empty()) continue;
+      const std::string base = grid.size() == 1 ? "/traces" : "/traces/point_" + std::to_string(g);
+      const std::string group = base + "/realisation_" + std::to_string(r.realisation);
+      f.write(group + "/time", r.time_s, "s");
+      f.write(group + "/voltage", r.voltage_v, "V");
+      f.write(group + "/charge", r.charge_c, "C");
+    }
+}
+
+//! One interval per grid point, as datasets <name>, <name>_low, <name>_high.
+void write_intervals(Hdf5Writer& f, const std::string& group, const std::string& name, std::string_view unit,
+                     const std::vector<GridPoint>& grid, const std::function<const Interval&(const GridPoint&)>& pick) {
+  std::vector<double> estimate, low, high;
+  std::vector<std::int64_t> known;
+  std::vector<std::string> methods;
+  for (const GridPoint& point : grid) {
+    const Interval& i = pick(point);
+    estimate.push_back(i.estimate);
+    low.push_back(i.low);
+    high.push_back(i.high);
+    known.push_back(i.known ? 1 : 0);
+    methods.push_back(i.method);
   }
+  f.write(group + "/" + name, estimate, unit);
+  f.write(group + "/" + name + "_low", low, unit);
+  f.write(group + "/" + name + "_high", high, unit);
+  f.write(group + "/" + name + "_known", known, "1");
+  f.write(group + "/" + name + "_method", methods, "text");
 }
 
-void write_interval(Hdf5Writer& f, const std::string& group, const std::string& name, const Interval& i,
-                    std::string_view unit) {
-  f.write(group + "/" + name, std::vector<double>{i.estimate}, unit);
-  f.write(group + "/" + name + "_low", std::vector<double>{i.low}, unit);
-  f.write(group + "/" + name + "_high", std::vector<double>{i.high}, unit);
-  f.attribute(group, name + "_method", i.method);
-  f.attribute(group, name + "_known", static_cast<std::int64_t>(i.known ? 1 : 0));
-}
-
-void write_summary(Hdf5Writer& f, const EnsembleSummary& s) {
+void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
   for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
     const ScalarInfo& info = scalar_info(static_cast<Scalar>(k));
-    const ScalarSummary& v = s.scalars[k];
     const std::string g = "/summary/" + std::string(info.name);
-    f.write(g + "/count", std::vector<std::int64_t>{static_cast<std::int64_t>(v.count)}, "1");
-    write_interval(f, g, "mean", v.mean, info.unit);
-    write_interval(f, g, "std", v.standard_deviation, info.unit);
-    write_interval(f, g, "median", v.median, info.unit);
-    write_interval(f, g, "p05", v.p05, info.unit);
-    write_interval(f, g, "p95", v.p95, info.unit);
-    f.write(g + "/min", std::vector<double>{v.min}, info.unit);
-    f.write(g + "/max", std::vector<double>{v.max}, info.unit);
+    std::vector<std::int64_t> count;
+    std::vector<double> min, max;
+    for (const GridPoint& point : grid) {
+      const ScalarSummary& v = point.summary.scalars[k];
+      count.push_back(static_cast<std::int64_t>(v.count));
+      min.push_back(v.min);
+      max.push_back(v.max);
+    }
+    f.write(g + "/count", count, "1");
+    f.write(g + "/min", min, info.unit);
+    f.write(g + "/max", max, info.unit);
+    write_intervals(f, g, "mean", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
+    write_intervals(f, g, "std", info.unit, grid,
+                    [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].standard_deviation; });
+    write_intervals(f, g, "median", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
+    write_intervals(f, g, "p05", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
+    write_intervals(f, g, "p95", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
   }
-  write_interval(f, "/summary/pooled", "fft_ratio", s.fft_pooled_ratio, "1");
-  write_interval(f, "/summary/pooled", "hr_ratio", s.hr_pooled_ratio, "1");
-  write_interval(f, "/summary/pooled", "valid_fraction", s.valid_fraction, "1");
+  write_intervals(f, "/summary/pooled", "fft_ratio", "1", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
+  write_intervals(f, "/summary/pooled", "hr_ratio", "1", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
+  write_intervals(f, "/summary/pooled", "valid_fraction", "1", grid,
+                  [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
 }
 
 }  // namespace
 
-void write_ensemble_file(const std::string& path, const Study& study, const EnsembleRun& run,
-                         const EnsembleSummary& summary) {
+void write_ensemble_file(const std::string& path, const Study& base, const std::vector<GridPoint>& grid) {
   Hdf5Writer file(path);
   write_provenance(file, {.file_type = "stengmc-ensemble",
-                          .input_file = study.file,
-                          .input_text = study.text,
-                          .seed = study.seed,
-                          .surface_file = study.surface_file,
-                          .surface_text = study.surface_text});
-  const EnsembleSettings& e = *study.ensemble;
-  file.attribute("/", "title", study.title);
+                          .input_file = base.file,
+                          .input_text = base.text,
+                          .seed = base.seed,
+                          .surface_file = base.surface_file,
+                          .surface_text = base.surface_text});
+  const EnsembleSettings& e = *base.ensemble;
+  std::size_t run = 0, valid = 0;
+  bool stopped = false;
+  for (const GridPoint& point : grid) {
+    run += point.run.records.size();
+    valid += point.summary.valid;
+    stopped = stopped || point.run.stopped_at_target;
+  }
+  file.attribute("/", "title", base.title);
+  file.attribute("/", "grid_points", static_cast<std::int64_t>(grid.size()));
   file.attribute("/", "realisations_requested", static_cast<std::int64_t>(e.realisations));
-  file.attribute("/", "realisations_run", static_cast<std::int64_t>(run.records.size()));
-  file.attribute("/", "valid_realisations", static_cast<std::int64_t>(summary.valid));
-  file.attribute("/", "stopped_at_target", static_cast<std::int64_t>(run.stopped_at_target ? 1 : 0));
+  file.attribute("/", "realisations_run", static_cast<std::int64_t>(run));
+  file.attribute("/", "valid_realisations", static_cast<std::int64_t>(valid));
+  file.attribute("/", "stopped_at_target", static_cast<std::int64_t>(stopped ? 1 : 0));
   file.attribute("/", "target_statistic", e.target ? scalar_info(*e.target).name : "");
   file.attribute("/", "target_half_width", e.target_half_width);
-  write_realisations(file, run);
-  write_traces(file, run);
-  write_summary(file, summary);
+  write_grid(file, base, grid);
+  write_realisations(file, grid);
+  write_traces(file, grid);
+  write_summary(file, grid);
   file.commit();
 }
 

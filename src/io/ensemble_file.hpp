@@ -1,28 +1,31 @@
 #pragma once
 //! The output of an ensemble (README: ensemble output), file_type "stengmc-ensemble":
-//!   /realisations/  one entry per realisation, by id: realisation, valid (0/1), failure
-//!                   (text), every Scalar by name, asperity_offset (K + 1)
+//!   /grid/          sweeps only: parameter (text, one per axis), values (G x axes)
+//!   /realisations/  one entry per realisation, by grid point then id: grid_point,
+//!                   realisation, valid (0/1), failure (text), every Scalar by name,
+//!                   asperity_offset (entries + 1)
 //!   /asperities/    every AsperityColumn by name, flat over the realisations:
 //!                   realisation j's asperities are [asperity_offset[j], asperity_offset[j+1])
 //!   /traces/realisation_<r>/{time, voltage, charge}  for [ensemble] trace_realisations
-//!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point
-//!                   (one for now): count, mean, mean_low, mean_high, std, std_low,
+//!                   (in a sweep: /traces/point_<g>/realisation_<r>/...)
+//!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point: count, mean, mean_low, mean_high, std, std_low,
 //!                   std_high, median, median_low, median_high, p05, p05_low, p05_high,
 //!                   p95, p95_low, p95_high, min, max; attributes <name>_method, <name>_known
-//!   /summary/pooled/ fft_ratio, hr_ratio, valid_fraction, each with _low and _high
+//!   /summary/pooled/ fft_ratio, hr_ratio, valid_fraction, each with _low and _high (G each)
 //!   root attributes: provenance (input_text, surface_text, seed, version, git revision),
 //!                   title, realisations_requested, realisations_run, valid_realisations,
 //!                   stopped_at_target, target_statistic, target_half_width
 //! Nothing in the datasets depends on the number of threads or on interruptions.
 #include <string>
 
-#include "ensemble/ensemble_runner.hpp"
-#include "ensemble/ensemble_summary.hpp"
+#include <vector>
+
+#include "ensemble/sweep.hpp"
 #include "io/study.hpp"
 
 namespace stengmc {
 
-void write_ensemble_file(const std::string& path, const Study& study, const EnsembleRun& run,
-                         const EnsembleSummary& summary);
+//! `base` is the study as written; `grid` its grid points (one without a sweep), run.
+void write_ensemble_file(const std::string& path, const Study& base, const std::vector<GridPoint>& grid);
 
 }  // namespace stengmc

@@ -64,7 +64,7 @@ void read_model(TomlTable& root, Study& study) {
   }
 }
 
-void read_surface(TomlTable& root, Study& study) {
+void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOverride>& surface_overrides) {
   auto surface = root.table("surface");
   if (!surface)
     root.fail("surface", "is missing: a [surface] table with file = \"...\", [[surface.asperity]] entries or kind = \"random\" is required");
@@ -82,6 +82,7 @@ void read_surface(TomlTable& root, Study& study) {
   if (!std::filesystem::exists(path))
     surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
   auto document = TomlDocument::from_file(path.string());
+  for (const ParameterOverride& o : surface_overrides) document->set_number(o.parameter.substr(8), o.value);
   TomlTable table = document->root();
   study.surface = std::make_shared<const Surface>(Surface::from_toml(table, path.parent_path()));
   document->reject_unknown_keys();
@@ -147,8 +148,18 @@ std::string default_output_file(const std::string& study_file) {
   return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
 }
 
-Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation) {
+Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
+            const std::vector<ParameterOverride>& overrides) {
   Study study;
+  study.overrides = overrides;
+  // Swept values are set before anything is read; "surface.*" goes to the surface file
+  // when the study names one (the study text itself stays as written: it is recorded).
+  std::vector<ParameterOverride> surface_overrides;
+  const bool surface_file = document.has_path("surface.file");
+  for (const ParameterOverride& o : overrides) {
+    if (surface_file && o.parameter.rfind("surface.", 0) == 0) surface_overrides.push_back(o);
+    else document.set_number(o.parameter, o.value);
+  }
   study.realisation = realisation.value_or(0);
   study.file = document.file();
   study.text = document.text();
@@ -160,7 +171,7 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation) {
   study.duration_s = root.positive("duration_s", 0.0);
   study.sample_rate_hz = root.positive("sample_rate_hz", 0.0);
   read_model(root, study);
-  read_surface(root, study);
+  read_surface(root, study, surface_overrides);
   read_circuit(root, study);
   if (auto domain = root.table("domain")) {
     const std::string policy = domain->choice("policy", "error", {"error", "flag"});
@@ -220,14 +231,15 @@ Study study_for_realisation(const Study& base, std::uint64_t realisation) {
   return study;
 }
 
-Study read_study(const std::string& file, std::optional<std::uint64_t> realisation) {
+Study read_study(const std::string& file, std::optional<std::uint64_t> realisation,
+                 const std::vector<ParameterOverride>& overrides) {
   auto document = TomlDocument::from_file(file);
-  return parse(*document, realisation);
+  return parse(*document, realisation, overrides);
 }
 
 Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation) {
   auto document = TomlDocument::from_string(text, file);
-  return parse(*document, realisation);
+  return parse(*document, realisation, {});
 }
 
 }  // namespace stengmc

@@ -43,6 +43,12 @@ struct OutputTraces {
   bool x0 = true;        //!< /asperity/x0 (Model 1)
 };
 
+//! A swept parameter's value at one grid point (EnsembleSettings::sweep).
+struct ParameterOverride {
+  std::string parameter;  //!< dotted key; "surface.*" reaches into the surface file the study names
+  double value = 0.0;
+};
+
 struct Study {
   std::string file;           //!< path the study was read from
   std::string text;           //!< the study file, verbatim, recorded in every output
@@ -64,6 +70,7 @@ struct Study {
   DomainPolicy domain_policy = DomainPolicy::error;
   std::string output_file;    //!< where `run` writes, unless the command line says otherwise
   OutputTraces traces;        //!< which traces it writes
+  std::vector<ParameterOverride> overrides;  //!< values set by a sweep before reading (none otherwise)
   std::optional<SpectrumSettings> spectrum;  //!< spectral analysis, when the study has [spectrum]
   std::optional<EnsembleSettings> ensemble;  //!< when the study is an ensemble ([ensemble])
   std::optional<NoiseSettings> noise;        //!< measurement noise on V before the spectra ([noise])
@@ -77,7 +84,8 @@ struct Study {
 //! InputError naming file, line, key and what was expected (ModelError when the
 //! realisation itself cannot be loaded). Relative surface paths are taken from the study
 //! file's folder.
-Study read_study(const std::string& file, std::optional<std::uint64_t> realisation = 0);
+Study read_study(const std::string& file, std::optional<std::uint64_t> realisation = 0,
+                 const std::vector<ParameterOverride>& overrides = {});
 
 //! The same from text (tests); `file` is used in messages and to resolve surface paths.
 Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation = 0);

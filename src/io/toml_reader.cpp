@@ -46,6 +46,54 @@ std::unique_ptr<TomlDocument> TomlDocument::from_string(const std::string& text,
 
 TomlTable TomlDocument::root() { return TomlTable(*this, table_, ""); }
 
+namespace {
+
+std::vector<std::string> split_path(std::string_view dotted) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = dotted.find('.', start);
+    parts.emplace_back(dotted.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start));
+    if (dot == std::string_view::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
+}  // namespace
+
+void TomlDocument::set_number(std::string_view dotted_path, double value) {
+  const std::vector<std::string> parts = split_path(dotted_path);
+  toml::table* table = &table_;
+  std::string walked;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    walked += (walked.empty() ? "" : ".") + parts[i];
+    toml::table* next = table->get_as<toml::table>(parts[i]);
+    if (!next)
+      throw InputError(file_ + ": cannot set " + std::string(dotted_path) + ": there is no table [" + walked +
+                       "] in the file (a swept parameter must name a key of an existing table)");
+    table = next;
+  }
+  if (parts.back().empty()) throw InputError(file_ + ": cannot set '" + std::string(dotted_path) + "': empty key");
+  if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15)
+    table->insert_or_assign(parts.back(), static_cast<std::int64_t>(value));
+  else
+    table->insert_or_assign(parts.back(), value);
+}
+
+bool TomlDocument::has_path(std::string_view dotted_path) const {
+  const std::vector<std::string> parts = split_path(dotted_path);
+  const toml::table* table = &table_;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const toml::node* node = table->get(parts[i]);
+    if (!node) return false;
+    if (i + 1 == parts.size()) return true;
+    table = node->as_table();
+    if (!table) return false;
+  }
+  return true;
+}
+
 void TomlDocument::note_read(const toml::table& table, std::string_view key) { read_[&table].emplace(key); }
 
 void TomlDocument::collect_unknown(const toml::table& table, const std::string& path,
@@ -100,6 +148,8 @@ std::string TomlTable::qualified(std::string_view key) const {
 
 std::string TomlTable::location(std::string_view key) const {
   const toml::node* node = table_->get(key);
+  // A value set by a parameter sweep has no line in the file.
+  if (node && node->source().begin.line == 0) return document_->file() + " (value set by the sweep)";
   const auto line = node ? node->source().begin.line : table_->source().begin.line;
   return document_->file() + ":" + std::to_string(line);
 }

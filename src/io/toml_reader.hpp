@@ -73,6 +73,13 @@ class TomlDocument {
 
   //! The root table.
   TomlTable root();
+  //! Sets the number at a dotted path ("model.belt_velocity_m_per_s") before it is read,
+  //! as a parameter sweep does: an integral value is stored as an integer (so integer keys
+  //! accept it). Every table on the path must exist; the key itself may be new.
+  //! Throws InputError naming the file and the path otherwise.
+  void set_number(std::string_view dotted_path, double value);
+  //! True when the dotted path names an existing table or key.
+  [[nodiscard]] bool has_path(std::string_view dotted_path) const;
   //! Throws InputError listing every key that no reader asked for, with its line; with a
   //! `prefix` ("spectrum"), only keys in that table (when a command reads one table of a study).
   void reject_unknown_keys(std::string_view prefix = "") const;

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -151,6 +153,89 @@ TEST(EnsembleCommand, AJournalOfAnotherStudyIsRefusedUnlessRestarted) {
   const auto restarted = run_cli("run " + study + " --restart -o " + out, scratch);
   EXPECT_EQ(restarted.exit_code, 0) << restarted.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+// Short Model 2 runs of the lognormal-count surface; `surface` names the surface file.
+std::string sweep_study(const std::string& surface, const std::string& ensemble) {
+  return "seed = 5\nduration_s = 10e-6\nsample_rate_hz = 100e6\n"
+         "[model]\nkind = \"model2\"\nbelt_velocity_m_per_s = 10\n"
+         "[surface]\nfile = \"" + surface + "\"\n[domain]\npolicy = \"flag\"\n"
+         "[spectrum]\nwindow = \"hann\"\nhigh_resolution = false\nmin_frequency_hz = 100e3\n"
+         "[ensemble]\nrealisations = 3\ntrace_realisations = []\n" + ensemble;
+}
+
+TEST(EnsembleCommand, ASweepPointEqualsTheStudyEditedByHand) {
+  // Grid point (count = 3, v_b = 4) of a sweep against an ensemble of the same study with
+  // those two values written into the files: the datasets of that point must be bitwise
+  // those of the edited study (the override reaches both the study and its surface file).
+  ScratchDir scratch("ensemble-sweep");
+  const std::string surface = std::string(STENGMC_SOURCE_DIR) + "/surfaces/lognormal_count.toml";
+  const std::string sweep = scratch.write(
+      "sweep.toml", sweep_study(surface, "[[ensemble.sweep]]\nparameter = \"surface.summits.count\"\nvalues = [2, 3]\n"
+                                         "[[ensemble.sweep]]\nparameter = \"model.belt_velocity_m_per_s\"\nvalues = [10, 4]\n"));
+  const auto swept = run_cli("run " + sweep + " -o " + scratch.file("sweep.h5"), scratch);
+  ASSERT_EQ(swept.exit_code, 0) << swept.output;
+
+  std::ifstream in(surface);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string edited_surface = text.str();
+  edited_surface.replace(edited_surface.find("count = 4"), 9, "count = 3");
+  const std::string surface_copy = scratch.write("surface.toml", edited_surface);
+  std::string edited = sweep_study(surface_copy, "");
+  edited.replace(edited.find("belt_velocity_m_per_s = 10"), 26, "belt_velocity_m_per_s = 4");
+  const std::string single = scratch.write("single.toml", edited);
+  const auto alone = run_cli("run " + single + " -o " + scratch.file("single.h5"), scratch);
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+
+  const Hdf5Reader a(scratch.file("sweep.h5")), b(scratch.file("single.h5"));
+  // Grid order: the first axis slowest -> (2,10), (2,4), (3,10), (3,4): point 3.
+  EXPECT_EQ(a.matrix("/grid/values")[3], (std::vector<double>{3.0, 4.0}));
+  const std::vector<double> points = a.vector("/realisations/grid_point");
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    const std::string name = "/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name);
+    const std::vector<double> all = a.vector(name), mine = b.vector(name);
+    std::vector<double> point3;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (points[i] == 3.0) point3.push_back(all[i]);
+    ASSERT_EQ(point3.size(), mine.size()) << name;
+    EXPECT_EQ(std::memcmp(point3.data(), mine.data(), mine.size() * sizeof(double)), 0) << name;
+  }
+  EXPECT_EQ(a.vector("/summary/asperity_count/mean")[3], 3.0);
+  EXPECT_EQ(a.vector("/summary/asperity_count/mean")[0], 2.0);
+}
+
+TEST(EnsembleCommand, BadEnsembleInputNamesTheKeyOrTheGridPoint) {
+  ScratchDir scratch("ensemble-bad");
+  const std::string surface = std::string(STENGMC_SOURCE_DIR) + "/surfaces/lognormal_count.toml";
+  struct Case {
+    const char* name;
+    std::string ensemble;
+    std::vector<std::string> message;
+  };
+  const std::vector<Case> cases = {
+      {"unknown target statistic", "target_statistic = \"vrms\"\ntarget_half_width = 0.1\n",
+       {"study.toml:", "[ensemble] target_statistic", "voltage_rms_v"}},
+      {"sweep of a missing table", "[[ensemble.sweep]]\nparameter = \"model.belt.velocity\"\nvalues = [1]\n",
+       {"grid point 1 of 1", "model.belt.velocity", "no table [model.belt]"}},
+      {"swept value the study refuses", "[[ensemble.sweep]]\nparameter = \"surface.summits.count\"\nvalues = [2, 0]\n",
+       {"grid point 2 of 2", "surface.summits.count = 0", "count", ">= 1"}},
+      {"sweeping the seed", "[[ensemble.sweep]]\nparameter = \"seed\"\nvalues = [1, 2]\n", {"seed", "cannot be swept"}},
+  };
+  for (const Case& c : cases) {
+    const std::string study = scratch.write("study.toml", sweep_study(surface, c.ensemble));
+    const auto result = run_cli("run " + study + " -o " + scratch.file("out.h5"), scratch);
+    EXPECT_EQ(result.exit_code, 2) << c.name << "\n" << result.output;
+    for (const std::string& part : c.message)
+      EXPECT_NE(result.output.find(part), std::string::npos) << c.name << ": " << part << "\n" << result.output;
+    EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5"))) << c.name;
+  }
+  // [noise] needs [spectrum]: the noise is added to what the spectra analyse.
+  std::string no_spectrum = sweep_study(surface, "") + "[noise]\nsnr_db = 20\n";
+  no_spectrum.erase(no_spectrum.find("[spectrum]"), no_spectrum.find("[ensemble]") - no_spectrum.find("[spectrum]"));
+  const auto noise = run_cli("run " + scratch.write("noise.toml", no_spectrum), scratch);
+  EXPECT_EQ(noise.exit_code, 2) << noise.output;
+  EXPECT_NE(noise.output.find("[noise] snr_db needs a [spectrum] table"), std::string::npos) << noise.output;
 }
 
 }  // namespace

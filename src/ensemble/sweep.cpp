@@ -1,0 +1,41 @@
+#include "ensemble/sweep.hpp"
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+
+namespace stengmc {
+
+std::vector<GridPoint> prepare_grid(const Study& base) {
+  const EnsembleSettings& settings = *base.ensemble;
+  std::vector<GridPoint> grid(settings.grid_size());
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    const std::vector<double> values = settings.grid_values(g);
+    for (std::size_t a = 0; a < values.size(); ++a) grid[g].overrides.push_back({settings.sweep[a].parameter, values[a]});
+    if (grid[g].overrides.empty()) {
+      grid[g].study = base;
+      continue;
+    }
+    try {
+      grid[g].study = read_study(base.file, std::nullopt, grid[g].overrides);
+    } catch (const InputError& e) {
+      throw InputError("grid point " + std::to_string(g + 1) + " of " + std::to_string(grid.size()) + " (" +
+                       describe_grid_point(grid[g]) + "): " + e.what());
+    }
+  }
+  return grid;
+}
+
+std::string describe_grid_point(const GridPoint& point, bool short_names) {
+  std::string out;
+  for (const ParameterOverride& o : point.overrides) {
+    const std::string name = short_names ? o.parameter.substr(o.parameter.rfind('.') + 1) : o.parameter;
+    out += (out.empty() ? "" : ", ") + name + " = " + format_number(o.value);
+  }
+  return out;
+}
+
+std::string journal_path(const std::string& out, std::size_t index, std::size_t count) {
+  return count == 1 ? out + ".journal" : out + ".point" + std::to_string(index) + ".journal";
+}
+
+}  // namespace stengmc

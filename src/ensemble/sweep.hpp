@@ -1,0 +1,31 @@
+#pragma once
+//! Parameter sweeps: every grid point of [[ensemble.sweep]] is an ensemble of the same
+//! realisation ids under its own parameter values (README: ensembles).
+#include <string>
+#include <vector>
+
+#include "ensemble/ensemble_runner.hpp"
+#include "ensemble/ensemble_summary.hpp"
+#include "io/study.hpp"
+
+namespace stengmc {
+
+struct GridPoint {
+  std::vector<ParameterOverride> overrides;  //!< one per sweep axis (none without a sweep)
+  Study study;                               //!< the study read with them
+  EnsembleRun run;
+  EnsembleSummary summary;
+};
+
+//! Reads the study at every grid point of `base`'s sweep (a single point without one), so
+//! a value that breaks the study is reported before anything runs, naming the point.
+std::vector<GridPoint> prepare_grid(const Study& base);
+
+//! "param = value, ..." of a grid point, for messages; with `short_names`, each parameter
+//! by its last key only ("count = 4"), for tables.
+std::string describe_grid_point(const GridPoint& point, bool short_names = false);
+
+//! The journal of grid point `index` of `count` beside the output `out`.
+std::string journal_path(const std::string& out, std::size_t index, std::size_t count);
+
+}  // namespace stengmc
