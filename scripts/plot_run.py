@@ -4,7 +4,8 @@
     plot_run.py RUN.h5 [RUN2.h5 ...]          one multi-panel figure per file
     plot_run.py --compare A.h5 B.h5 --out F.png   voltages of several runs on one axis
 
-`stengmc surface` files (file_type "stengmc-surface") go to plot_surface.py.
+`stengmc surface` files (file_type "stengmc-surface") go to plot_surface.py, ensemble
+files (file_type "stengmc-ensemble") to plot_ensemble.py.
 
 Reads only the file layout documented in the README; run with Debian's python3
 (python3-h5py, python3-matplotlib).
@@ -22,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_ensemble  # noqa: E402  (beside this script)
 import plot_surface  # noqa: E402  (beside this script)
 
 SUPPORTED_FORMAT = 1
@@ -37,6 +39,8 @@ def open_checked(path):
     kind = attribute(f, "file_type")
     if kind == plot_surface.FILE_TYPE:
         sys.exit(f"{path}: a `stengmc surface` file has no voltages to compare; plot it without --compare")
+    if kind == plot_ensemble.FILE_TYPE:
+        sys.exit(f"{path}: an ensemble file has no single voltage to compare; plot it without --compare")
     if kind not in ("stengmc-run", "stengmc-circuit", "stengmc-spectrum"):
         sys.exit(f"{path}: not a stengmc output file (file_type = {kind!r})")
     if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
@@ -58,6 +62,9 @@ def plot_run(path):
         kind = attribute(peek, "file_type")
     if kind == plot_surface.FILE_TYPE:
         plot_surface.plot_surface(path)
+        return
+    if kind == plot_ensemble.FILE_TYPE:
+        plot_ensemble.plot_ensemble(path)
         return
     f = open_checked(path)
     if "time" not in f:  # a `stengmc spectrum` output: spectra only
