@@ -185,6 +185,11 @@ class Ensemble:
             return f"grid point {g}"
         return separator.join(f"{short(p)} = {v:g}" for p, v in zip(self.parameters, self.grid[g]))
 
+    def has_spectra(self):
+        """False for a study without [spectrum]: no lines were looked for."""
+        sliding = self.scalar("n_sliding")
+        return sliding is not None and bool(np.any(np.asarray(sliding) > 0))
+
     def has_esprit(self):
         hr = self.scalar("hr_ratio")[self.valid]
         pooled = self.pooled("hr_ratio")[0]
@@ -349,6 +354,13 @@ def grid_axis(ax, e):
 def ratio_counts(ax, e):
     """How many valid realisations reached each identifiable fraction (FFT, and ESPRIT)."""
     methods = [("fft_ratio", "FFT", "C0")] + ([("hr_ratio", "ESPRIT", "C3")] if e.has_esprit() else [])
+    if not e.has_spectra():
+        ax.text(0.5, 0.5, "the study has no [spectrum]:\nno lines were looked for", ha="center", va="center",
+                transform=ax.transAxes)
+        ax.set_title("identifiability ratio: not computed", fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        return
     if not np.any(e.valid):
         ax.text(0.5, 0.5, "no valid realisation", ha="center", va="center", transform=ax.transAxes)
         ax.set_title("identifiability ratio: nothing to show", fontsize=9)
@@ -543,39 +555,8 @@ def band(ax, x, estimate, low, high, known, color, ls="-", marker=None, hatch=No
             bars[2][0].set_linestyle("-" if known[i] else ":")
 
 
-def plot_sweep(e, out):
-    axis = x_axis(e)
-    x_name = e.parameters[axis]
-    groups = lines(e, axis)
-    esprit = e.has_esprit()
-    counts = e.valid_per_point()
-    values = e.grid[:, axis]
-    log2 = powers_of_two(values)
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5.6))
-    colors = [f"C{j % 10}" for j in range(len(groups))]
-    quantities = [("voltage_rms_v", "V", "mean V_rms"), ("final_charge_c", "C", "mean final charge Q")]
-    scales = {s: si_scale(np.concatenate(e.summary(s)[:3]), u) for s, u, _ in quantities}
-    untrusted = False
-    for color, (label, points) in zip(colors, groups):
-        x = values[points]
-        ax = axes[0]
-        ratios = [("fft_ratio", "-", "o", None)] + ([("hr_ratio", "--", "s", "////")] if esprit else [])
-        for scalar, ls, marker, hatch in ratios:
-            pooled, low, high, known = (a[points] for a in e.pooled(scalar))
-            band(ax, x, pooled, low, high, known, color, ls=ls, hatch=hatch)
-            untrusted |= bool(np.any(np.isfinite(low) & ~known))
-            mean = e.summary(scalar)[0][points]
-            ax.plot(x, mean, marker, ls="none", mfc="none", mec=color, ms=7, mew=1.2)
-        for ax, (scalar, _, _) in zip(axes[1:], quantities):
-            factor, _ = scales[scalar]
-            estimate, low, high, known = (a[points] for a in e.summary(scalar))
-            band(ax, x, estimate * factor, low * factor, high * factor, known, color, marker="o")
-            untrusted |= bool(np.any(np.isfinite(low) & ~known))
-        empty = [g for g in points if counts[g] == 0]
-        for ax in axes if empty else []:  # (an empty unclipped line upsets tight_layout)
-            ax.plot(values[empty], np.full(len(empty), 0.03), "x", color=color, ms=8, mew=2,
-                    transform=ax.get_xaxis_transform(), clip_on=False)
-    ax = axes[0]
+def identifiability_legend(ax, e, groups, colors, esprit, untrusted, counts):
+    """Axis labels, limits and the two legends of the identifiability panel."""
     ax.set_ylim(-0.03, 1.05)
     ax.set_ylabel("identifiable / sliding asperities [1]")
     ax.set_title("identifiability" + (" (FFT and ESPRIT)" if esprit else " (FFT lines)"), fontsize=9)
@@ -598,7 +579,46 @@ def plot_sweep(e, out):
         ax.add_artist(legend)
         ax.legend(handles=[Line2D([], [], color=c, lw=3, label=label) for c, (label, _) in zip(colors, groups)],
                   fontsize=7, loc="upper right")
-    for ax, (scalar, _, what) in zip(axes[1:], quantities):
+
+
+def plot_sweep(e, out):
+    axis = x_axis(e)
+    x_name = e.parameters[axis]
+    groups = lines(e, axis)
+    esprit = e.has_esprit()
+    counts = e.valid_per_point()
+    values = e.grid[:, axis]
+    log2 = powers_of_two(values)
+    spectra = e.has_spectra()
+    fig, axes = plt.subplots(1, 3 if spectra else 2, figsize=(17, 5.6) if spectra else (12, 5.6))
+    # Without [spectrum] there is nothing to identify: only V_rms and Q.
+    id_ax, q_axes = (axes[0], axes[1:]) if spectra else (None, axes)
+    colors = [f"C{j % 10}" for j in range(len(groups))]
+    quantities = [("voltage_rms_v", "V", "mean V_rms"), ("final_charge_c", "C", "mean final charge Q")]
+    scales = {s: si_scale(np.concatenate(e.summary(s)[:3]), u) for s, u, _ in quantities}
+    untrusted = False
+    for color, (label, points) in zip(colors, groups):
+        x = values[points]
+        ax = id_ax
+        ratios = [("fft_ratio", "-", "o", None)] + ([("hr_ratio", "--", "s", "////")] if esprit else [])
+        for scalar, ls, marker, hatch in ratios if spectra else []:
+            pooled, low, high, known = (a[points] for a in e.pooled(scalar))
+            band(ax, x, pooled, low, high, known, color, ls=ls, hatch=hatch)
+            untrusted |= bool(np.any(np.isfinite(low) & ~known))
+            mean = e.summary(scalar)[0][points]
+            ax.plot(x, mean, marker, ls="none", mfc="none", mec=color, ms=7, mew=1.2)
+        for ax, (scalar, _, _) in zip(q_axes, quantities):
+            factor, _ = scales[scalar]
+            estimate, low, high, known = (a[points] for a in e.summary(scalar))
+            band(ax, x, estimate * factor, low * factor, high * factor, known, color, marker="o")
+            untrusted |= bool(np.any(np.isfinite(low) & ~known))
+        empty = [g for g in points if counts[g] == 0]
+        for ax in axes if empty else []:  # (an empty unclipped line upsets tight_layout)
+            ax.plot(values[empty], np.full(len(empty), 0.03), "x", color=color, ms=8, mew=2,
+                    transform=ax.get_xaxis_transform(), clip_on=False)
+    if spectra:
+        identifiability_legend(id_ax, e, groups, colors, esprit, untrusted, counts)
+    for ax, (scalar, _, what) in zip(q_axes, quantities):
         _, unit = scales[scalar]
         ax.set_ylabel(f"{what} [{unit}]")
         ax.set_title(f"{what} over the valid realisations, 95 % CI band", fontsize=9)

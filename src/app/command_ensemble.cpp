@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -33,17 +34,25 @@ void print_header(const Study& study, std::size_t grid_points) {
 
 //! One line per grid point: the few statistics a sweep is usually about.
 std::string format_grid_table(const std::vector<GridPoint>& grid) {
-  std::string out = "  point  parameters                       valid     V_rms [V] mean [95 % CI]         "
-                    "final charge [C]  FFT pooled ratio [95 % CI]\n";
-  char line[400];
+  std::size_t width = 10;
+  for (const GridPoint& point : grid) width = std::max(width, describe_grid_point(point, true).size());
+  const int w = static_cast<int>(width);
+  char line[512];
+  std::snprintf(line, sizeof line, "  %5s  %-*s %9s  %-36s %-17s %s\n", "point", w, "parameters", "valid",
+                "V_rms [V] mean [95 % CI]", "final charge [C]", "FFT pooled ratio [95 % CI]");
+  std::string out = line;
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const EnsembleSummary& s = grid[g].summary;
     const Interval& v = s.scalars[static_cast<std::size_t>(Scalar::voltage_rms_v)].mean;
     const Interval& q = s.scalars[static_cast<std::size_t>(Scalar::final_charge_c)].mean;
     const Interval& r = s.fft_pooled_ratio;
-    std::snprintf(line, sizeof line, "  %5zu  %-32s %4zu/%-4zu %-10.4g [%.4g, %.4g]  %-16.4g  %.3f [%.3f, %.3f]\n", g + 1,
-                  describe_grid_point(grid[g], true).c_str(), s.valid, s.realisations, v.estimate, v.low, v.high,
-                  q.estimate, r.estimate, r.low, r.high);
+    char voltage[64], ratio[64];
+    std::snprintf(voltage, sizeof voltage, "%.4g [%.4g, %.4g]", v.estimate, v.low, v.high);
+    // A study without [spectrum] has no lines to identify.
+    if (r.known) std::snprintf(ratio, sizeof ratio, "%.3f [%.3f, %.3f]", r.estimate, r.low, r.high);
+    else std::snprintf(ratio, sizeof ratio, "-");
+    std::snprintf(line, sizeof line, "  %5zu  %-*s %4zu/%-4zu  %-36s %-17.4g %s\n", g + 1, w,
+                  describe_grid_point(grid[g], true).c_str(), s.valid, s.realisations, voltage, q.estimate, ratio);
     out += line;
   }
   return out;

@@ -1,5 +1,7 @@
 #include "io/hdf5_file.hpp"
 
+#include <algorithm>
+
 #include <unistd.h>
 
 #include <cmath>
@@ -85,12 +87,31 @@ void Hdf5Writer::set_units(H5::DataSet& dataset, std::string_view units) {
   attribute.write(string_type(), std::string(units));
 }
 
+namespace {
+
+//! 1-D datasets are chunked and compressed (shuffle + deflate 1): per-realisation tables of
+//! a large ensemble are read a column at a time and compress several-fold; the values are
+//! stored exactly. Empty datasets stay contiguous (a chunk cannot be empty).
+H5::DSetCreatPropList column_layout(hsize_t size) {
+  H5::DSetCreatPropList layout;
+  if (size == 0) return layout;
+  constexpr hsize_t CHUNK = 16384;
+  const hsize_t chunk[1] = {std::min(size, CHUNK)};
+  layout.setChunk(1, chunk);
+  layout.setShuffle();
+  layout.setDeflate(1);
+  return layout;
+}
+
+}  // namespace
+
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units) {
   check_finite(path, values);
   guarded<Error>(temporary_path_, "cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
     group_for(path);
-    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims));
+    H5::DataSet dataset =
+        file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
     set_units(dataset, units);
   });
@@ -118,7 +139,8 @@ void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> va
   guarded<Error>(temporary_path_, "cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
     group_for(path);
-    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims));
+    H5::DataSet dataset =
+        file_.createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
     set_units(dataset, units);
   });
