@@ -66,7 +66,10 @@ void run(const CircuitOptions& options) {
   const CircuitResult circuit = solve_circuit(input.elements, pointers, input.times_s, options.params, &progress);
 
   Hdf5Writer file(options.out);
-  write_provenance(file, {"stengmc-circuit", options.input, "", 0, "", ""});
+  Provenance provenance;
+  provenance.file_type = "stengmc-circuit";
+  provenance.input_file = options.input;
+  write_provenance(file, provenance);
   file.attribute("/", "interpolation", interpolation_name(interpolation));
   file.write("/time", input.times_s, "s");
   file.write("/asperity/x", input.x_m, "m");

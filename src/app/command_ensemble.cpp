@@ -47,12 +47,16 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
     const Interval& q = s.scalars[static_cast<std::size_t>(Scalar::final_charge_c)].mean;
     const Interval& r = s.fft_pooled_ratio;
     char voltage[64], ratio[64];
-    std::snprintf(voltage, sizeof voltage, "%.4g [%.4g, %.4g]", v.estimate, v.low, v.high);
+    if (s.valid > 0) std::snprintf(voltage, sizeof voltage, "%.4g [%.4g, %.4g]", v.estimate, v.low, v.high);
+    else std::snprintf(voltage, sizeof voltage, "- (no valid realisation)");
     // A study without [spectrum] has no lines to identify.
-    if (r.known) std::snprintf(ratio, sizeof ratio, "%.3f [%.3f, %.3f]", r.estimate, r.low, r.high);
+    if (r.known && s.valid > 0) std::snprintf(ratio, sizeof ratio, "%.3f [%.3f, %.3f]", r.estimate, r.low, r.high);
     else std::snprintf(ratio, sizeof ratio, "-");
-    std::snprintf(line, sizeof line, "  %5zu  %-*s %4zu/%-4zu  %-36s %-17.4g %s\n", g + 1, w,
-                  describe_grid_point(grid[g], true).c_str(), s.valid, s.realisations, voltage, q.estimate, ratio);
+    char charge[32];
+    if (s.valid > 0) std::snprintf(charge, sizeof charge, "%.4g", q.estimate);
+    else std::snprintf(charge, sizeof charge, "-");
+    std::snprintf(line, sizeof line, "  %5zu  %-*s %4zu/%-4zu  %-36s %-17s %s\n", g + 1, w,
+                  describe_grid_point(grid[g], true).c_str(), s.valid, s.realisations, voltage, charge, ratio);
     out += line;
   }
   return out;
@@ -63,13 +67,16 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
 void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
                         const EnsembleCommandOptions& options) {
   const std::string out = out_option.empty() ? default_output(study, options) : out_option;
+  const EnsembleSettings& settings = *study.ensemble;
+  if (options.only && *options.only >= settings.realisations)
+    throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +
+                     std::to_string(settings.realisations - 1) + " ([ensemble] realisations = " +
+                     std::to_string(settings.realisations) + ")");
   std::vector<GridPoint> grid = prepare_grid(study);
   print_header(study, grid.size());
-  for (std::size_t g = 0; g < grid.size(); ++g) {
-    const std::string journal = journal_path(out, g, grid.size());
-    if (!options.only && !options.restart && std::filesystem::exists(journal))
-      std::printf("  resuming the interrupted run recorded in %s\n", journal.c_str());
-  }
+  if (!study.surface->random_surface() && !study.noise)
+    std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
+                "is the same run and the intervals have zero width\n");
   std::fflush(stdout);
   for (std::size_t g = 0; g < grid.size(); ++g) {
     EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
@@ -91,6 +98,16 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
       std::printf("%zu invalid realisations in all, kept out of the statistics (which and why: /realisations/failure)\n",
                   invalid);
   }
+  if (settings.target && !options.only)
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+      const EnsembleRun& run = grid[g].run;
+      std::printf("%starget: 95 %% CI half-width of mean %s = %.4g (goal %.4g): %s\n",
+                  grid.size() > 1 ? ("point " + std::to_string(g + 1) + ": ").c_str() : "",
+                  std::string(scalar_info(*settings.target).name).c_str(), run.target_half_width_reached,
+                  settings.target_half_width,
+                  run.target_met ? (run.stopped_at_target ? "met, stopped early" : "met at the cap")
+                                 : "NOT met: the cap of realisations came first");
+    }
   std::printf("wrote %s\n", out.c_str());
   if (figures && render_figures(out) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");

@@ -54,7 +54,10 @@ void run(const RunOptions& options) {
     return;
   }
   if (options.ensemble.only || options.ensemble.restart)
-    throw InputError(options.study_file + " has no [ensemble] table: --only and --restart apply to ensembles only");
+    throw InputError(base.ensemble ? std::string("--realisation runs one realisation as an ordinary run; --only and "
+                                                 "--restart belong to the ensemble run: use one or the other")
+                                   : options.study_file + " has no [ensemble] table: --only and --restart apply to "
+                                                          "ensembles only");
   run_single(options);
 }
 

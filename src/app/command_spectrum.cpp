@@ -65,7 +65,10 @@ void run(const SpectrumOptions& options) {
     throw InputError(options.input + ": " + e.what());
   }
   Hdf5Writer file(options.out);
-  write_provenance(file, {"stengmc-spectrum", options.input, "", 0, "", ""});
+  Provenance provenance;
+  provenance.file_type = "stengmc-spectrum";
+  provenance.input_file = options.input;
+  write_provenance(file, provenance);
   file.attribute("/", "settings_file", options.settings_file);
   write_spectra(file, result, settings);
   file.commit();

@@ -77,10 +77,13 @@ void run(const SurfaceOptions& options) {
     examination = examine_surface(surface, options.seed, options.first, options.realisations, models.model1,
                                   models.model2, &progress, scope);
   }
-  write_surface_file(out,
-                     {.file_type = "stengmc-surface", .input_file = options.surface_file, .input_text = document->text(),
-                      .seed = options.seed},
-                     examination);
+  Provenance provenance;
+  provenance.file_type = "stengmc-surface";
+  provenance.input_file = options.surface_file;
+  provenance.input_text = document->text();
+  provenance.seed = options.seed;
+  provenance.auxiliary_inputs = surface.auxiliary_inputs();
+  write_surface_file(out, provenance, examination);
   std::printf("%s", format_surface_summary(examination).c_str());
   std::printf("wrote %s\n", out.c_str());
   if (options.figures && render_figures(out) != 0)

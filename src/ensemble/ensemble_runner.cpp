@@ -53,19 +53,21 @@ class RunningStatus {
   double voltage_rms_ = 0.0, fft_identifiable_ = 0.0, sliding_ = 0.0;
 };
 
-//! True when the target's 95 % CI half-width over the valid records with ids below `end`
-//! is within the target. Only those: a resumed journal may hold later ids, which an
-//! uninterrupted run would not have seen at this point.
-bool target_reached(const Study& study, const std::map<std::uint64_t, RealisationRecord>& done, std::uint64_t end) {
+//! The 95 % CI half-width of the target's mean over the valid records with ids below
+//! `end` (only those: a resumed journal may hold later ids, which an uninterrupted run
+//! would not have seen at this point); nothing with fewer than the minimum count.
+std::optional<double> target_half_width(const Study& study, const std::map<std::uint64_t, RealisationRecord>& done,
+                                        std::uint64_t end) {
   const EnsembleSettings& settings = *study.ensemble;
   std::vector<double> values;
   for (auto it = done.begin(); it != done.end() && it->first < end; ++it)
     if (it->second.valid) values.push_back(it->second.scalar(*settings.target));
-  if (values.size() < 2) return false;
+  if (values.size() < MIN_REALISATIONS_FOR_TARGET) return std::nullopt;
   RandomEngine engine =
       random_stream(study.seed, 0, StreamKind::bootstrap, static_cast<std::uint64_t>(*settings.target));
   const Interval ci = mean_interval(values, engine);
-  return ci.known && ci.half_width() <= settings.target_half_width;
+  if (!ci.known) return std::nullopt;
+  return ci.half_width();
 }
 
 //! Runs `ids` in parallel; records go to the journal (if any) and `done`.
@@ -111,6 +113,7 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
   std::uint64_t h = fnv1a64(study.text);
   h = fnv1a64(std::string_view("\0surface\0", 9), h);
   h = fnv1a64(study.surface_text, h);
+  h = fnv1a64(study.surface->auxiliary_inputs(), h);
   for (const ParameterOverride& o : study.overrides) {
     h = fnv1a64(std::string_view("\0override\0", 10), h);
     h = fnv1a64(o.parameter, h);
@@ -128,6 +131,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
   const auto start = std::chrono::steady_clock::now();
   EnsembleRun run;
   run.requested = settings.realisations;
+  run.only = options.only;
   run.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::map<std::uint64_t, RealisationRecord> done;
   RunningStatus status;
@@ -155,13 +159,19 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
       for (std::uint64_t id = first; id < end; ++id)
         if (!done.count(id)) ids.push_back(id);
       run_batch(study, ids, run.threads, &journal, done, progress ? &*progress : nullptr, status);
-      if (settings.target && end < settings.realisations && target_reached(study, done, end)) {
+      const auto width = settings.target ? target_half_width(study, done, end) : std::nullopt;
+      if (width && *width <= settings.target_half_width && end < settings.realisations) {
         run.stopped_at_target = true;
         // Records of later batches (recovered from a journal) are not part of this run.
         done.erase(done.lower_bound(end), done.end());
         break;
       }
     }
+  }
+  if (settings.target && !options.only) {
+    const auto width = target_half_width(study, done, settings.realisations);
+    run.target_half_width_reached = width.value_or(0.0);
+    run.target_met = width && *width <= settings.target_half_width;
   }
   for (auto& [id, r] : done) run.records.push_back(std::move(r));
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -24,14 +24,23 @@ struct EnsembleRun {
   std::vector<RealisationRecord> records;  //!< every realisation run, by id
   std::uint64_t requested = 0;             //!< [ensemble] realisations (the cap, with a target)
   bool stopped_at_target = false;          //!< the target half-width was reached before the cap
+  //! With a target: the final 95 % CI half-width of the target's mean, and whether it met
+  //! the goal (false also when the cap came first).
+  double target_half_width_reached = 0.0;
+  bool target_met = false;
   std::size_t resumed = 0;                 //!< records recovered from an interrupted run
   double seconds = 0.0;                    //!< wall time of this invocation [s]
   int threads = 1;                         //!< threads used
+  std::optional<std::uint64_t> only;       //!< the one realisation run (--only), if so
 };
 
 //! Everything that determines an ensemble's results, hashed: the study and surface texts,
 //! the program version and git revision. A journal written under another hash is refused.
 std::uint64_t ensemble_identity_hash(const Study& study);
+
+//! The target rule looks at no fewer valid realisations than this: a CI from a handful
+//! can be narrow by chance (or zero-wide for a statistic that has not varied yet).
+inline constexpr std::size_t MIN_REALISATIONS_FOR_TARGET = 30;
 
 //! Runs `study` (read without a realisation; it must have [ensemble]). Completed
 //! realisations are appended to the journal at `journal_path` as they finish; on success

@@ -61,6 +61,7 @@ std::string format_ensemble_summary(const EnsembleSummary& s, const EnsembleRun&
   std::snprintf(line, sizeof line, "  %-22s %6s  %-34s %-11s %-34s %-11s %-11s\n", "statistic", "n", "mean [95 % CI]", "std",
                 "median [95 % CI]", "5 %", "95 %");
   out += line;
+  if (s.valid == 0) out += "  no valid realisation: no statistics\n";
   std::string all_zero;
   for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
     const ScalarSummary& v = s.scalars[k];

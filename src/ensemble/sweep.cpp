@@ -2,8 +2,24 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "pipeline/analyse_spectra.hpp"
 
 namespace stengmc {
+
+namespace {
+
+//! Every realisation would fail alike on an analysis interval the run cannot hold: say it
+//! before anything runs (a run cut short at x = l is another matter, see run_study).
+void check_analysis_interval(const Study& study) {
+  if (!study.spectrum) return;
+  try {
+    (void)analysis_range(study.grid().times(), *study.spectrum);
+  } catch (const InputError& e) {
+    throw InputError(study.file + ": [spectrum] start_s / end_s: " + e.what());
+  }
+}
+
+}  // namespace
 
 std::vector<GridPoint> prepare_grid(const Study& base) {
   const EnsembleSettings& settings = *base.ensemble;
@@ -11,13 +27,11 @@ std::vector<GridPoint> prepare_grid(const Study& base) {
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const std::vector<double> values = settings.grid_values(g);
     for (std::size_t a = 0; a < values.size(); ++a) grid[g].overrides.push_back({settings.sweep[a].parameter, values[a]});
-    if (grid[g].overrides.empty()) {
-      grid[g].study = base;
-      continue;
-    }
     try {
-      grid[g].study = read_study(base.file, std::nullopt, grid[g].overrides);
+      grid[g].study = grid[g].overrides.empty() ? base : read_study(base.file, std::nullopt, grid[g].overrides);
+      check_analysis_interval(grid[g].study);
     } catch (const InputError& e) {
+      if (grid[g].overrides.empty()) throw;  // no sweep: the message already names the file
       throw InputError("grid point " + std::to_string(g + 1) + " of " + std::to_string(grid.size()) + " (" +
                        describe_grid_point(grid[g]) + "): " + e.what());
     }

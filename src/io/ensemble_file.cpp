@@ -115,6 +115,14 @@ void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
   write_intervals(f, "/summary/pooled", "hr_ratio", "1", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
   write_intervals(f, "/summary/pooled", "valid_fraction", "1", grid,
                   [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
+  std::vector<double> width;
+  std::vector<std::int64_t> met;
+  for (const GridPoint& point : grid) {
+    width.push_back(point.run.target_half_width_reached);
+    met.push_back(point.run.target_met ? 1 : 0);
+  }
+  f.write("/summary/target/half_width", width, "as the target statistic");
+  f.write("/summary/target/met", met, "1");
 }
 
 }  // namespace
@@ -126,7 +134,8 @@ void write_ensemble_file(const std::string& path, const Study& base, const std::
                           .input_text = base.text,
                           .seed = base.seed,
                           .surface_file = base.surface_file,
-                          .surface_text = base.surface_text});
+                          .surface_text = base.surface_text,
+                          .auxiliary_inputs = base.surface->auxiliary_inputs()});
   const EnsembleSettings& e = *base.ensemble;
   std::size_t run = 0, valid = 0;
   bool stopped = false;
@@ -143,6 +152,8 @@ void write_ensemble_file(const std::string& path, const Study& base, const std::
   file.attribute("/", "stopped_at_target", static_cast<std::int64_t>(stopped ? 1 : 0));
   file.attribute("/", "target_statistic", e.target ? scalar_info(*e.target).name : "");
   file.attribute("/", "target_half_width", e.target_half_width);
+  const auto& only = grid.front().run.only;
+  file.attribute("/", "only_realisation", static_cast<std::int64_t>(only ? static_cast<std::int64_t>(*only) : -1));
   write_grid(file, base, grid);
   write_realisations(file, grid);
   write_traces(file, grid);

@@ -10,11 +10,14 @@
 //!                   (in a sweep: /traces/point_<g>/realisation_<r>/...)
 //!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point: count, mean, mean_low, mean_high, std, std_low,
 //!                   std_high, median, median_low, median_high, p05, p05_low, p05_high,
-//!                   p95, p95_low, p95_high, min, max; attributes <name>_method, <name>_known
+//!                   p95, p95_low, p95_high, min, max, and <name>_method, <name>_known
 //!   /summary/pooled/ fft_ratio, hr_ratio, valid_fraction, each with _low and _high (G each)
+//!   /summary/target/ half_width (the final CI half-width of the target's mean; 0 without
+//!                   a target or with fewer than 30 valid realisations), met (0/1)
 //!   root attributes: provenance (input_text, surface_text, seed, version, git revision),
 //!                   title, realisations_requested, realisations_run, valid_realisations,
-//!                   stopped_at_target, target_statistic, target_half_width
+//!                   stopped_at_target, target_statistic, target_half_width,
+//!                   only_realisation (the id run by --only, else -1)
 //! Nothing in the datasets depends on the number of threads or on interruptions.
 #include <string>
 

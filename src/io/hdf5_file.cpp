@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "core/error.hpp"
 
@@ -163,28 +164,60 @@ void Hdf5Writer::group(const std::string& path) {
   guarded<Error>(temporary_path_, "cannot create group " + path, [&] { group_for(path + "/"); });
 }
 
+namespace {
+
+//! Attribute `name` of the group or dataset at `path`, if it has one. (An open attribute
+//! keeps its object alive in the library, so the object may be closed here.)
+std::optional<H5::Attribute> find_attribute(const H5::H5File& file, const std::string& path, const std::string& name) {
+  if (path != "/" && file.childObjType(path) == H5O_TYPE_DATASET) {
+    const H5::DataSet dataset = file.openDataSet(path);
+    if (!dataset.attrExists(name)) return std::nullopt;
+    return dataset.openAttribute(name);
+  }
+  const H5::Group group = file.openGroup(path);
+  if (!group.attrExists(name)) return std::nullopt;
+  return group.openAttribute(name);
+}
+
+//! Calls `write` with the group or dataset at `path` (attributes go on either).
+template <typename Write>
+void on_object(H5::H5File& file, const std::string& path, Write write) {
+  if (path != "/" && file.childObjType(path) == H5O_TYPE_DATASET) {
+    H5::DataSet dataset = file.openDataSet(path);
+    write(static_cast<H5::H5Object&>(dataset));
+    return;
+  }
+  H5::Group group = file.openGroup(path);
+  write(static_cast<H5::H5Object&>(group));
+}
+
+}  // namespace
+
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::string_view value) {
   guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    H5::Group group = file_.openGroup(object);
-    H5::Attribute attribute = group.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
-    attribute.write(string_type(), std::string(value));
+    on_object(file_, object, [&](H5::H5Object& target) {
+      H5::Attribute attribute = target.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
+      attribute.write(string_type(), std::string(value));
+    });
   });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, double value) {
   if (!std::isfinite(value)) throw Error("refusing to write a non-finite attribute " + object + "@" + name);
   guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    H5::Group group = file_.openGroup(object);
-    H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
-    attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
+    on_object(file_, object, [&](H5::H5Object& target) {
+      H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
+      attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
+    });
   });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::int64_t value) {
   guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    H5::Group group = file_.openGroup(object);
-    H5::Attribute attribute = group.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
-    attribute.write(H5::PredType::NATIVE_INT64, &value);
+    on_object(file_, object, [&](H5::H5Object& target) {
+      H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
+      attribute.write(H5::PredType::NATIVE_INT64, &value);
+    });
   });
 }
 
@@ -275,9 +308,9 @@ std::vector<std::vector<double>> Hdf5Reader::matrix(const std::string& path) con
 
 std::string Hdf5Reader::string_attribute(const std::string& object, const std::string& name) const {
   return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&] {
-    H5::Group group = file_.openGroup(object);
-    if (!group.attrExists(name)) return std::string();
-    H5::Attribute attribute = group.openAttribute(name);
+    const auto found = find_attribute(file_, object, name);
+    if (!found) return std::string();
+    const H5::Attribute& attribute = *found;
     if (attribute.getTypeClass() != H5T_STRING) throw InputError(path_ + ": attribute " + object + "@" + name + " is not text");
     std::string value;
     attribute.read(attribute.getStrType(), value);
@@ -288,9 +321,9 @@ std::string Hdf5Reader::string_attribute(const std::string& object, const std::s
 std::optional<double> Hdf5Reader::number_attribute(const std::string& object, const std::string& name) const {
   return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<double> {
     if (!has(object) && object != "/") return std::nullopt;
-    H5::Group group = file_.openGroup(object);
-    if (!group.attrExists(name)) return std::nullopt;
-    H5::Attribute attribute = group.openAttribute(name);
+    const auto found = find_attribute(file_, object, name);
+    if (!found) return std::nullopt;
+    const H5::Attribute& attribute = *found;
     if (attribute.getTypeClass() != H5T_FLOAT && attribute.getTypeClass() != H5T_INTEGER)
       throw InputError(path_ + ": attribute " + object + "@" + name + " is not a number");
     double value = 0.0;
@@ -301,9 +334,9 @@ std::optional<double> Hdf5Reader::number_attribute(const std::string& object, co
 
 std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& object, const std::string& name) const {
   return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<std::int64_t> {
-    H5::Group group = file_.openGroup(object);
-    if (!group.attrExists(name)) return std::nullopt;
-    H5::Attribute attribute = group.openAttribute(name);
+    const auto found = find_attribute(file_, object, name);
+    if (!found) return std::nullopt;
+    const H5::Attribute& attribute = *found;
     if (attribute.getTypeClass() != H5T_INTEGER) throw InputError(path_ + ": attribute " + object + "@" + name + " is not an integer");
     std::int64_t value = 0;
     attribute.read(H5::PredType::NATIVE_INT64, &value);

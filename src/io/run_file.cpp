@@ -74,6 +74,7 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
   file.attribute("/", "input_text", provenance.input_text);
   file.attribute("/", "surface_file", provenance.surface_file);
   file.attribute("/", "surface_text", provenance.surface_text);
+  if (!provenance.auxiliary_inputs.empty()) file.attribute("/", "surface_auxiliary_inputs", provenance.auxiliary_inputs);
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
@@ -96,7 +97,13 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
 
 void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary) {
   Hdf5Writer file(path);
-  write_provenance(file, {"stengmc-run", study.file, study.text, study.seed, study.surface_file, study.surface_text});
+  write_provenance(file, {.file_type = "stengmc-run",
+                          .input_file = study.file,
+                          .input_text = study.text,
+                          .seed = study.seed,
+                          .surface_file = study.surface_file,
+                          .surface_text = study.surface_text,
+                          .auxiliary_inputs = study.surface->auxiliary_inputs()});
   file.attribute("/", "title", study.title);
   file.attribute("/", "realisation", static_cast<std::int64_t>(study.realisation));
   file.attribute("/", "domain_policy", domain_policy_name(study.domain_policy));

@@ -23,6 +23,7 @@ struct Provenance {
   std::uint64_t seed = 0;   //!< master seed
   std::string surface_file; //!< the surface file a study drew from ("" if inline or none)
   std::string surface_text; //!< that file's text, verbatim
+  std::string auxiliary_inputs;  //!< files the surface read (histograms), "<path>\n<text>" each
 };
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);

@@ -85,6 +85,9 @@ class Distribution {
   [[nodiscard]] bool truncated() const { return truncated_; }
   //! `fixed`: its values, sorted (each drawn with probability 1/n); empty otherwise.
   [[nodiscard]] const std::vector<double>& fixed_values() const { return values_; }
+  //! The histogram file an empirical law was read from, as "<path>\n<its text>" ("" for
+  //! every other law): results depend on it, so provenance and resume checks include it.
+  [[nodiscard]] const std::string& source() const { return source_; }
 
  private:
   Distribution(Kind kind, double a, double b, double min, double max);
@@ -110,6 +113,7 @@ class Distribution {
   std::vector<double> values_;       // fixed: sorted values
   std::vector<Bin> bins_;            // empirical / uniform: bins with weights normalised
   std::vector<double> cumulative_;   // empirical / uniform: cdf at each bin's upper edge
+  std::string source_;               // empirical from a file: "<path>\n<its text>", else empty
 };
 
 }  // namespace stengmc

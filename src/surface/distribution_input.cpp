@@ -96,7 +96,12 @@ Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& 
     if (name.empty()) t.fail("file", "is missing; the empirical distribution needs a histogram file");
     const std::filesystem::path path = base_dir / name;  // an absolute name replaces base_dir
     try {
-      return empirical(read_histogram(path));
+      Distribution law = empirical(read_histogram(path));
+      std::ifstream in(path, std::ios::binary);
+      std::stringstream text;
+      text << in.rdbuf();
+      law.source_ = path.string() + "\n" + text.str();
+      return law;
     } catch (const InputError& e) {
       t.fail("file", "= \"" + name + "\": " + e.what());
     }

@@ -22,6 +22,13 @@ Surface Surface::random(RandomSurface surface) {
   return s;
 }
 
+std::string Surface::auxiliary_inputs() const {
+  if (!random_) return "";
+  std::string out = random_->heights.source();
+  if (random_->stiffness) out += random_->stiffness->source();
+  return out;
+}
+
 Population Surface::sample(std::uint64_t seed, std::uint64_t realisation) const {
   if (random_) return sample_population(*random_, seed, realisation);
   Population p;

@@ -23,6 +23,10 @@ class Surface {
   //! Realisation `realisation`: the list itself, or a sample (see sample_population).
   [[nodiscard]] Population sample(std::uint64_t seed, std::uint64_t realisation) const;
 
+  //! Every file the surface read besides its own (empirical histograms), each as
+  //! "<path>\n<text>", for provenance and resume checks; empty for most surfaces.
+  [[nodiscard]] std::string auxiliary_inputs() const;
+
   //! The random description, or nullptr for a fixed list.
   [[nodiscard]] const RandomSurface* random_surface() const { return random_ ? &*random_ : nullptr; }
 
