@@ -65,15 +65,16 @@ void run(const RunOptions& options) {
 
 void add_run_command(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
-  CLI::App* command = app.add_subcommand("run", "Run a study: tribology -> S-TENG circuit -> HDF5 output");
+  CLI::App* command = app.add_subcommand("run", "Run a study: surface -> tribology -> S-TENG circuit -> spectra -> HDF5 output;\n"
+                                                 "a study with [ensemble] runs its realisations in parallel and reports statistics");
   command->add_option("study", options->study_file, "Study file (TOML; see studies/ and the README)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
   CLI::Option* realisation = command->add_option(
       "-r,--realisation", options->realisation,
-      "Run this one realisation of a random surface and write its full run file (also for an [ensemble] study)")
-      ->capture_default_str()
+      "Run this one realisation of a random surface and write its full run file (also for an [ensemble] "
+      "study; default 0, and an ensemble study without it runs the ensemble)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
   command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (0: OMP_NUM_THREADS or every core)")

@@ -148,8 +148,9 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
     for (const auto& [id, r] : done) status.add(r);
     std::optional<Progress> progress;
     if (options.show_progress) {
-      progress.emplace(options.progress_label, settings.realisations);
-      progress->advance(done.size());
+      // Only what is left: counting resumed realisations as done now would make the ETA
+      // optimistic.
+      progress.emplace(options.progress_label, settings.realisations - done.size());
     }
     // Without a target, one batch of everything balances the threads best.
     const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;

@@ -1,5 +1,7 @@
 #include "ensemble/sweep.hpp"
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "pipeline/analyse_spectra.hpp"
@@ -19,6 +21,27 @@ void check_analysis_interval(const Study& study) {
   }
 }
 
+//! Records stay in memory until the output is written (~600 bytes each plus ~100 per
+//! asperity, plus the traces kept): refuse a study that cannot fit before it runs.
+void check_memory(const std::vector<GridPoint>& grid) {
+  constexpr double LIMIT_BYTES = 8e9;
+  double bytes = 0.0;
+  for (const GridPoint& point : grid) {
+    const Study& s = point.study;
+    const RandomSurface* random = s.surface->random_surface();
+    const double asperities =
+        random ? random->mean_summit_count() : static_cast<double>(s.surface->sample(0, 0).asperities.size());
+    const double samples = std::round(s.duration_s * s.sample_rate_hz) + 1.0;
+    bytes += static_cast<double>(s.ensemble->realisations) * (600.0 + 100.0 * asperities) +
+             static_cast<double>(s.ensemble->trace_realisations.size()) * 24.0 * samples;
+  }
+  if (bytes > LIMIT_BYTES)
+    throw InputError(grid.front().study.file + ": [ensemble] realisations = " +
+                     std::to_string(grid.front().study.ensemble->realisations) + " over " + std::to_string(grid.size()) +
+                     " grid point(s) would keep ~" + format_number(bytes / 1e9) + " GB of records in memory (limit " +
+                     format_number(LIMIT_BYTES / 1e9) + " GB): run fewer realisations per study");
+}
+
 }  // namespace
 
 std::vector<GridPoint> prepare_grid(const Study& base) {
@@ -36,6 +59,7 @@ std::vector<GridPoint> prepare_grid(const Study& base) {
                        describe_grid_point(grid[g]) + "): " + e.what());
     }
   }
+  check_memory(grid);
   return grid;
 }
 
