@@ -23,7 +23,6 @@ import argparse
 import math
 import os
 import re
-import sys
 import textwrap
 
 import h5py
@@ -32,12 +31,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from stengmc_h5 import array, attribute  # noqa: E402
+from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter, NullLocator  # noqa: E402
 
 FILE_TYPE = "stengmc-ensemble"
-SUPPORTED_FORMAT = 1
 US = 1e6  # s -> us
 
 # Units of sweep parameters, from the suffix of their study-file key (README: keys say
@@ -46,34 +46,14 @@ PARAMETER_UNITS = [("_m_per_s", "m/s"), ("_n_per_m", "N/m"), ("_c_per_m2", "C/mÂ
                    ("_kg", "kg"), ("_db", "dB"), ("_m", "m"), ("_n", "N"), ("_s", "s"), ("_v", "V"), ("count", "1")]
 
 
-def attribute(node, name, default=""):
-    value = node.attrs.get(name, default)
-    return value.decode() if isinstance(value, bytes) else value
 
 
 def text(values):
     return [v.decode() if isinstance(v, bytes) else str(v) for v in values]
 
 
-def open_checked(path):
-    """The file, after checking it is a stengmc ensemble file this script can read."""
-    if not os.path.isfile(path):
-        sys.exit(f"{path}: no such file")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        sys.exit(f"{path}: not an HDF5 file ({e})")
-    kind = attribute(f, "file_type")
-    if kind != FILE_TYPE:
-        sys.exit(f"{path}: not a stengmc ensemble output file (file_type = {kind!r}, expected {FILE_TYPE!r})")
-    if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
-        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
-    return f
 
 
-def array(f, name):
-    """A dataset as a numpy array, or an empty one when the file lacks it."""
-    return f[name][()] if name in f and isinstance(f[name], h5py.Dataset) else np.empty(0)
 
 
 def short(parameter):
@@ -661,7 +641,7 @@ def plot_sweep(e, out):
 
 def plot_ensemble(path):
     """Writes <stem>.png (and <stem>_sweep.png for a sweep) beside `path`; returns their names."""
-    f = open_checked(path)
+    f = open_stengmc_file(path, FILE_TYPE, "stengmc ensemble output file")
     e = Ensemble(f, path)
     if e.point.size == 0:
         print(f"{path}: no realisations recorded (/realisations is empty or missing); no figure written")

@@ -21,17 +21,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from stengmc_h5 import attribute  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_ensemble  # noqa: E402  (beside this script)
 import plot_surface  # noqa: E402  (beside this script)
 
 SUPPORTED_FORMAT = 1
-
-
-def attribute(node, name, default=""):
-    value = node.attrs.get(name, default)
-    return value.decode() if isinstance(value, bytes) else value
 
 
 def open_checked(path):

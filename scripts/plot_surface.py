@@ -16,15 +16,15 @@ files to plot_surface().
 import argparse
 import math
 import os
-import sys
 import textwrap
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from stengmc_h5 import array, attribute  # noqa: E402
+from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
@@ -34,35 +34,14 @@ except ImportError:  # pragma: no cover
     tomllib = None
 
 FILE_TYPE = "stengmc-surface"
-SUPPORTED_FORMAT = 1
 UM = 1e6  # m -> um
 MN = 1e3  # N -> mN
 
 
-def attribute(node, name, default=""):
-    value = node.attrs.get(name, default)
-    return value.decode() if isinstance(value, bytes) else value
 
 
-def open_checked(path):
-    """The file, after checking it is a stengmc surface file this script can read."""
-    if not os.path.isfile(path):
-        sys.exit(f"{path}: no such file")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        sys.exit(f"{path}: not an HDF5 file ({e})")
-    kind = attribute(f, "file_type")
-    if kind != FILE_TYPE:
-        sys.exit(f"{path}: not a `stengmc surface` output file (file_type = {kind!r}, expected {FILE_TYPE!r})")
-    if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
-        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
-    return f
 
 
-def array(f, name):
-    """A dataset as a numpy array, or an empty one when the file lacks it."""
-    return f[name][()] if name in f and isinstance(f[name], h5py.Dataset) else np.empty(0)
 
 
 def input_table(f):
@@ -376,7 +355,7 @@ def collect(f):
 def plot_surface(path):
     """Writes <stem>.png beside `path` and returns its name; None when the file has nothing
     to plot (a fixed asperity list draws no summits)."""
-    f = open_checked(path)
+    f = open_stengmc_file(path, FILE_TYPE, "`stengmc surface` output file")
     d = collect(f)
     panels = []
     if d["heights"].size:

@@ -17,6 +17,7 @@
 #include "core/random_stream.hpp"
 #include "surface/copula.hpp"
 #include "surface/distribution.hpp"
+#include "support/cli_runner.hpp"
 
 namespace stengmc {
 namespace {
@@ -29,19 +30,11 @@ constexpr std::size_t N = 100000;
 // (Noether 1963), which only makes the positive checks easier to pass.
 const double KS_CRITICAL = 1.9495 / std::sqrt(double(N));
 
+//! Histogram files go to one scratch folder, removed when the test program ends.
 std::filesystem::path temp_dir() {
-  auto dir = std::filesystem::temp_directory_path() / ("stengmc_test_distribution_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  static const testing::ScratchDir scratch("distribution");
+  return scratch.file("");
 }
-
-// Removes the histogram files when the test program ends.
-struct TempDirCleanup {
-  ~TempDirCleanup() {
-    std::error_code ignored;
-    std::filesystem::remove_all(temp_dir(), ignored);
-  }
-} cleanup;
 
 void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
 

@@ -16,25 +16,18 @@
 #include "io/toml_reader.hpp"
 #include "surface/random_surface.hpp"
 #include "surface/surface.hpp"
+#include "support/cli_runner.hpp"
 
 namespace stengmc {
 namespace {
 
 const std::string FILE_NAME = "bad_surface.toml";
 
+//! Histogram files go to one scratch folder, removed when the test program ends.
 std::filesystem::path temp_dir() {
-  auto dir = std::filesystem::temp_directory_path() / ("stengmc_test_surface_input_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  static const testing::ScratchDir scratch("surface-input");
+  return scratch.file("");
 }
-
-// Removes the histogram files when the test program ends.
-struct TempDirCleanup {
-  ~TempDirCleanup() {
-    std::error_code ignored;
-    std::filesystem::remove_all(temp_dir(), ignored);
-  }
-} cleanup;
 
 const char* MATERIALS = R"(
 [materials]

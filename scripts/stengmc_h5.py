@@ -1,0 +1,37 @@
+"""What every stengmc figure script needs from an output file: text attributes and a
+checked open (README: output files). Debian's python3-h5py and numpy."""
+import os
+import sys
+
+import h5py
+import numpy as np
+
+SUPPORTED_FORMAT = 1
+
+
+def attribute(node, name, default=""):
+    """An attribute, with HDF5 byte strings decoded."""
+    value = node.attrs.get(name, default)
+    return value.decode() if isinstance(value, bytes) else value
+
+
+def open_checked(path, file_type, what):
+    """The file, after checking it exists, is HDF5, is a `file_type` file (`what` names it
+    in the message) and has a format version this script reads; exits with a message otherwise."""
+    if not os.path.isfile(path):
+        sys.exit(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        sys.exit(f"{path}: not an HDF5 file ({e})")
+    kind = attribute(f, "file_type")
+    if kind != file_type:
+        sys.exit(f"{path}: not a {what} (file_type = {kind!r}, expected {file_type!r})")
+    if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
+        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
+    return f
+
+
+def array(f, name):
+    """A dataset as a numpy array, or an empty one when the file lacks it."""
+    return f[name][()] if name in f and isinstance(f[name], h5py.Dataset) else np.empty(0)
