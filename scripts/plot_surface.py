@@ -98,8 +98,10 @@ def draw_law(ax, sample, target, scale, unit, what, contact_sample=None):
         probability = target["density"][()]
         seen, counts = np.unique(x, return_counts=True)
         frequency = counts / n
-        spacing = np.min(np.diff(np.unique(np.concatenate([values, seen])))) if values.size + seen.size > 1 else 1.0
-        width = 0.35 * spacing if spacing > 0 else 1.0
+        # Bar width from the spacing of the support; a single value (a fixed height) has none.
+        support = np.unique(np.concatenate([values, seen]))
+        spacing = np.min(np.diff(support)) if support.size > 1 else max(abs(support[0]) * 0.1, 1.0)
+        width = 0.35 * spacing
         ax.bar(seen - width / 2, frequency, width=width, color="C0", alpha=0.7, label=f"sample frequency ({n} {what})")
         ax.bar(values + width / 2, probability, width=width, color="C3", alpha=0.7, label="target probability")
         # Expected frequency at the listed values: deviation in binomial standard deviations.
