@@ -12,19 +12,11 @@
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "spectral/fftw_planner.hpp"
 
 namespace stengmc {
 
 namespace {
-
-// FFTW's planner keeps global state: creating or destroying plans from two threads at once
-// is undefined (FFTW manual §5.4, "Thread safety"); fftw_execute on distinct plans is safe.
-// A later issue runs one analyzer per OpenMP thread, so every plan creation and destruction
-// goes through this lock.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 // Samples between exact re-evaluations of e^{-i theta n} in amplitude_at(): within a block
 // the phasors are advanced by complex multiplication (a few eps of drift per step), at each

@@ -1,0 +1,75 @@
+#pragma once
+//! One record in, the raw estimate out: noise level, fits of every plausible count, the
+//! count's posterior, the identified lines with their uncertainty, the realised population's
+//! median and spread, and the checks the verdict speaks from (README: inverse estimation).
+//! Calibration (calibration_maps.hpp) turns the raw posterior and spreads into calibrated
+//! ones; this class knows nothing of banks.
+#include <span>
+#include <vector>
+
+#include "inverse/atom_table.hpp"
+#include "inverse/count_posterior.hpp"
+#include "inverse/inverse_prior.hpp"
+#include "inverse/line_proposals.hpp"
+#include "inverse/line_search.hpp"
+#include "inverse/noise_level.hpp"
+#include "inverse/record_model.hpp"
+
+namespace stengmc {
+
+struct EstimatedLine {
+  double stiffness_n_per_m = 0.0;
+  double log_stiffness_se = 0.0;        //!< standard error of ln k (Gauss–Newton) [-]
+  double frequency_hz = 0.0;            //!< damped natural frequency sqrt(k/m - d^2) / 2 pi [Hz]
+  double amplitude_v = 0.0;             //!< the line's amplitude at breakaway, R sigma w v_b [V]
+  double nearest_separation_hz = 0.0;   //!< to the nearest other identified line (0 alone) [Hz]
+};
+
+struct RecordEstimate {
+  NoiseLevel noise;                     //!< from the band above the prior's lines
+  double sigma_v = 0.0;                 //!< the noise level the evidence used [V]
+  double residual_sigma_v = 0.0;        //!< rms residual of the chosen fit, sqrt(RSS / (M - n)) [V]
+  std::vector<double> fit_residual_v2;  //!< RSS of the best fit with n atoms, index n [V^2]
+  CountPosterior posterior;             //!< raw (uncalibrated)
+  std::size_t count = 0;                //!< the most probable count
+  std::vector<EstimatedLine> lines;     //!< at that count, ascending in k
+  double median_stiffness_n_per_m = 0.0;  //!< median of the identified k
+  double sd_log_stiffness = 0.0;        //!< sample sd of ln k (n - 1 denominator; 0 below 2 lines)
+  double in_band_power_ratio = 1.0;     //!< residual power in the lines' band over the noise band's (1: white)
+  std::size_t lines_outside_prior = 0;  //!< identified k beyond the prior's 1e-4 / 1 - 1e-4 quantiles
+  bool more_than_prior_allows = false;  //!< one atom more than the prior's largest count still explains much
+  double signal_to_noise_db = 0.0;      //!< 10 log10(var(model) / sigma^2) of the chosen fit [dB]
+  double seconds = 0.0;                 //!< wall time of the estimate [s]
+};
+
+class RecordEstimator {
+ public:
+  //! Holds FFT plans: one estimator per thread.
+  RecordEstimator(const AtomTable& atoms, const InversePrior& prior, const LineSearchOptions& options = {});
+
+  RecordEstimate estimate(std::span<const double> voltage);
+
+  [[nodiscard]] const AtomTable& atoms() const { return *atoms_; }
+  [[nodiscard]] const InversePrior& prior() const { return prior_; }
+  //! The frequency band the prior's lines fall in [Hz].
+  [[nodiscard]] double line_band_low_hz() const { return band_low_hz_; }
+  [[nodiscard]] double line_band_high_hz() const { return band_high_hz_; }
+
+ private:
+  const AtomTable* atoms_;
+  InversePrior prior_;
+  LogStiffnessDensity density_;
+  RecordModel model_;
+  LineProposals proposals_;
+  LineSearchOptions options_;
+  double band_low_hz_ = 0.0, band_high_hz_ = 0.0;
+  double support_low_ = 0.0, support_high_ = 0.0;
+  NoiseEstimator noise_;
+};
+
+//! The relative accuracy the record model is trusted to (atoms ~1e-4, the circuit coupling
+//! ~5e-4 at 16 asperities: README, "atoms"); added to the noise as a floor so a noise-free
+//! record does not get a zero-width answer from model error alone.
+inline constexpr double MODEL_RELATIVE_ACCURACY = 1e-3;
+
+}  // namespace stengmc

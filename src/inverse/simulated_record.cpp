@@ -1,0 +1,33 @@
+#include "inverse/simulated_record.hpp"
+
+#include <memory>
+
+#include "core/error.hpp"
+#include "pipeline/run_study.hpp"
+#include "surface/surface.hpp"
+
+namespace stengmc {
+
+std::vector<double> simulate_record(const KnownDevice& device, std::span<const double> k, const RecordGrid& grid) {
+  if (grid.start_s != 0.0) throw Error("simulate_record: the grid must start at t = 0");
+  Study study;
+  study.file = "(simulated record)";
+  study.model = ModelKind::model2;
+  study.model2 = device.model;
+  study.circuit = device.circuit;
+  study.sample_rate_hz = grid.sample_rate_hz();
+  study.duration_s = grid.duration_s();
+  for (double stiffness : k) {
+    Asperity a = device.asperity;
+    a.stiffness_n_per_m = stiffness;
+    study.asperities.push_back(a);
+  }
+  study.surface = std::make_shared<const Surface>(Surface::fixed_list(study.asperities));
+  study.population = study.surface->sample(0, 0);
+  RunResult result = run_study(study, RunOptions{.show_progress = false});
+  if (!result.valid) throw ModelError("simulate_record: an asperity reached l");
+  result.circuit.voltage_v.resize(grid.samples);
+  return std::move(result.circuit.voltage_v);
+}
+
+}  // namespace stengmc
