@@ -14,6 +14,8 @@ void add_circuit_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_spectrum_command(CLI::App& app);
 void add_surface_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
+void add_invert_command(CLI::App& app);
 
 //! What `run` passes on to an ensemble.
 struct EnsembleCommandOptions {

@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   stengmc::app::add_spectrum_command(app);
   stengmc::app::add_surface_command(app);
   stengmc::app::add_plot_command(app);
+  stengmc::app::add_calibrate_command(app);
+  stengmc::app::add_invert_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

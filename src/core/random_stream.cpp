@@ -18,6 +18,7 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::noise: return "noise";
     case StreamKind::count: return "count";
     case StreamKind::bootstrap: return "bootstrap";
+    case StreamKind::draws: return "draws";
   }
   return "unknown";
 }

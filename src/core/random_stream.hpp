@@ -32,6 +32,7 @@ enum class StreamKind : std::uint64_t {
   noise = 5,        //!< measurement / signal noise
   count = 6,        //!< the (Poisson) number of asperities
   bootstrap = 7,    //!< bootstrap resampling of ensemble statistics (stats/ensemble_statistics)
+  draws = 8,        //!< per-realisation parameter draws of an ensemble ([[ensemble.draw]]; index = the draw)
 };
 
 //! The kind's name, for messages and file attributes ("heights").

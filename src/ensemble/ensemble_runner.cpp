@@ -25,6 +25,7 @@ namespace stengmc {
 namespace {
 
 bool keeps_traces(const EnsembleSettings& settings, std::uint64_t realisation) {
+  if (settings.trace_all) return true;
   const auto& t = settings.trace_realisations;
   return std::find(t.begin(), t.end(), realisation) != t.end();
 }
@@ -72,7 +73,8 @@ std::optional<double> target_half_width(const Study& study, const std::map<std::
 
 //! Runs `ids` in parallel; records go to the journal (if any) and `done`.
 void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, Journal* journal,
-               std::map<std::uint64_t, RealisationRecord>& done, Progress* progress, RunningStatus& status) {
+               std::map<std::uint64_t, RealisationRecord>& done, Progress* progress, RunningStatus& status,
+               const RealisationHook& hook) {
   std::vector<RealisationRecord> results(ids.size());
   std::mutex mutex;
   std::exception_ptr failure;
@@ -86,7 +88,9 @@ void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int th
     }
     try {
       const std::uint64_t id = ids[static_cast<std::size_t>(k)];
-      RealisationRecord record = run_realisation(study, id, keeps_traces(*study.ensemble, id));
+      RealisationRecord record =
+          run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id));
+      if (hook.apply) hook.apply(record);
       if (journal) journal->append(record);
       std::lock_guard lock(mutex);
       status.add(record);
@@ -125,7 +129,8 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
   return fnv1a64(git_revision(), h);
 }
 
-EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options) {
+EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options,
+                         const RealisationHook& hook) {
   if (!study.ensemble) throw InputError(study.file + ": the study has no [ensemble] table");
   const EnsembleSettings& settings = *study.ensemble;
   const auto start = std::chrono::steady_clock::now();
@@ -137,11 +142,13 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
   RunningStatus status;
 
   if (options.only) {
-    run_batch(study, {*options.only}, 1, nullptr, done, nullptr, status);
+    run_batch(study, {*options.only}, 1, nullptr, done, nullptr, status, hook);
   } else {
     if (options.restart) std::filesystem::remove(journal_path);
-    Journal journal(journal_path, {ensemble_identity_hash(study), std::string("stengmc ") + program_version() + " (git " +
-                                                                       git_revision() + "), study " + study.file});
+    const std::uint64_t identity =
+        hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
+    Journal journal(journal_path, {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
+                                                 "), study " + study.file});
     for (const RealisationRecord& r : journal.recovered())
       if (r.realisation < settings.realisations) done.emplace(r.realisation, r);
     run.resumed = done.size();
@@ -159,7 +166,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
       std::vector<std::uint64_t> ids;
       for (std::uint64_t id = first; id < end; ++id)
         if (!done.count(id)) ids.push_back(id);
-      run_batch(study, ids, run.threads, &journal, done, progress ? &*progress : nullptr, status);
+      run_batch(study, ids, run.threads, &journal, done, progress ? &*progress : nullptr, status, hook);
       const auto width = settings.target ? target_half_width(study, done, end) : std::nullopt;
       if (width && *width <= settings.target_half_width && end < settings.realisations) {
         run.stopped_at_target = true;

@@ -3,6 +3,7 @@
 //! work computable from the study and its id alone, kept in a crash-safe journal so a
 //! killed run resumes where it stopped (README: ensembles).
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,16 @@ struct EnsembleOptions {
   std::optional<std::uint64_t> only;   //!< run this realisation alone (no journal)
   bool restart = false;                //!< discard an existing journal instead of resuming it
   bool show_progress = true;           //!< progress bar with ETA and running statistics
+};
+
+//! A caller's own reduction of every realisation, run in the worker thread as each record
+//! finishes and before it is journalled (the inverse calibration estimates from the noisy
+//! trace, adds extras and drops the traces). It must depend on the record alone, so the
+//! results stay independent of threads and interruptions.
+struct RealisationHook {
+  std::function<void(RealisationRecord&)> apply;
+  bool needs_traces = false;   //!< every realisation keeps its traces for `apply` (which may drop them)
+  std::string identity;        //!< what `apply` depends on besides the study (hashed into the journal identity)
 };
 
 struct EnsembleRun {
@@ -47,6 +58,7 @@ inline constexpr std::size_t MIN_REALISATIONS_FOR_TARGET = 30;
 //! the caller writes the output and then removes the journal. Realisations are processed
 //! in batches of [ensemble] batch ids when a target is set, so the stopping point is the
 //! same for any number of threads.
-EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options);
+EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options,
+                         const RealisationHook& hook = {});
 
 }  // namespace stengmc

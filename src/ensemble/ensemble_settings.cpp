@@ -1,5 +1,7 @@
 #include "ensemble/ensemble_settings.hpp"
 
+#include <boost/random/uniform_int_distribution.hpp>
+#include <boost/random/uniform_real_distribution.hpp>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -39,6 +41,32 @@ EnsembleSettings read_ensemble_settings(TomlTable& t) {
       s.trace_realisations.push_back(static_cast<std::uint64_t>(v));
     }
   }
+  s.trace_all = t.boolean("trace_all", false);
+  for (TomlTable& entry : t.table_array("draw")) {
+    DrawAxis d;
+    d.parameter = entry.string("parameter", "");
+    if (d.parameter.empty())
+      entry.fail("parameter", "is missing: the dotted key to draw, e.g. \"noise.snr_db\"");
+    if (d.parameter.rfind("ensemble.", 0) == 0 || d.parameter == "seed")
+      entry.fail("parameter", "= \"" + d.parameter + "\" cannot be drawn (it defines the ensemble itself)");
+    for (const DrawAxis& other : s.draws)
+      if (other.parameter == d.parameter) entry.fail("parameter", "= \"" + d.parameter + "\" is drawn twice");
+    const std::string kind = entry.choice("kind", "uniform", {"uniform", "integer", "choice"});
+    if (kind == "choice") {
+      d.kind = DrawAxis::Kind::choice;
+      d.values = entry.number_list("values");
+      if (d.values.empty()) entry.fail("values", "is missing or empty: the values a choice draws from");
+    } else {
+      d.kind = kind == "uniform" ? DrawAxis::Kind::uniform : DrawAxis::Kind::integer;
+      if (!entry.has("min") || !entry.has("max")) entry.fail("min", "and max are required for a " + kind + " draw");
+      d.min = entry.number("min", 0.0);
+      d.max = entry.number("max", 0.0);
+      if (!(d.min <= d.max)) entry.fail("max", "= " + format_number(d.max) + " must be >= min = " + format_number(d.min));
+      if (d.kind == DrawAxis::Kind::integer && (d.min != std::floor(d.min) || d.max != std::floor(d.max)))
+        entry.fail("min", "and max of an integer draw must be whole numbers");
+    }
+    s.draws.push_back(std::move(d));
+  }
   std::size_t grid = 1;
   for (TomlTable& axis : t.table_array("sweep")) {
     SweepAxis a;
@@ -57,6 +85,10 @@ EnsembleSettings read_ensemble_settings(TomlTable& t) {
                               std::to_string(MAX_GRID_POINTS));
     s.sweep.push_back(std::move(a));
   }
+  for (TomlTable& entry : t.table_array("draw"))
+    for (const SweepAxis& axis : s.sweep)
+      if (entry.string("parameter", "") == axis.parameter)
+        entry.fail("parameter", "= \"" + axis.parameter + "\" is both swept and drawn: choose one");
   return s;
 }
 
@@ -73,6 +105,19 @@ std::vector<double> EnsembleSettings::grid_values(std::size_t point) const {
     point /= sweep[a].values.size();
   }
   return values;
+}
+
+double DrawAxis::draw(RandomEngine& engine) const {
+  switch (kind) {
+    case Kind::uniform:
+      return min == max ? min : boost::random::uniform_real_distribution<double>(min, max)(engine);
+    case Kind::integer:
+      return static_cast<double>(
+          boost::random::uniform_int_distribution<long long>(static_cast<long long>(min), static_cast<long long>(max))(engine));
+    case Kind::choice:
+      return values[boost::random::uniform_int_distribution<std::size_t>(0, values.size() - 1)(engine)];
+  }
+  return min;
 }
 
 NoiseSettings read_noise_settings(TomlTable& t) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/random_stream.hpp"
 #include "ensemble/realisation_record.hpp"
 #include "io/toml_reader.hpp"
 
@@ -15,6 +16,20 @@ namespace stengmc {
 struct SweepAxis {
   std::string parameter;
   std::vector<double> values;
+};
+
+//! One parameter drawn afresh for every realisation ([[ensemble.draw]]): a prior over a
+//! study key, where a sweep is a grid. Realisation r's value comes from the stream
+//! (seed, r, draws, index of the draw) alone.
+struct DrawAxis {
+  enum class Kind { uniform, integer, choice };
+  std::string parameter;        //!< dotted key, as a sweep's
+  Kind kind = Kind::uniform;
+  double min = 0.0, max = 0.0;  //!< uniform on [min, max); integer: uniform on min .. max
+  std::vector<double> values;   //!< choice: one of these, equally likely
+
+  //! The value for a realisation, from that realisation's stream of this draw.
+  [[nodiscard]] double draw(RandomEngine& engine) const;
 };
 
 //! How many realisations, and which keep their traces.
@@ -29,6 +44,10 @@ struct EnsembleSettings {
   std::uint64_t batch = 64;
   //! Realisations whose time, voltage and charge traces are written.
   std::vector<std::uint64_t> trace_realisations{0};
+  //! Every realisation keeps its traces (trace_all = true), e.g. to invert them later.
+  bool trace_all = false;
+  //! [[ensemble.draw]]: parameters drawn per realisation (applied after a sweep's values).
+  std::vector<DrawAxis> draws;
   //! [[ensemble.sweep]] axes: every combination of their values (the first axis varying
   //! slowest) is a grid point, each an ensemble of the same realisation ids (common random
   //! numbers: differences between grid points are not blurred by different draws).

@@ -20,7 +20,7 @@ namespace stengmc {
 namespace {
 
 constexpr std::string_view MAGIC = "STENGMCJ";
-constexpr std::uint32_t FORMAT_VERSION = 1;
+constexpr std::uint32_t FORMAT_VERSION = 2;  // 2: measured voltage trace and named extras
 // Any length above this is corruption: a record is kilobytes, a traced one megabytes. Also
 // bounds what a damaged length can make us allocate.
 constexpr std::uint64_t MAX_PAYLOAD_BYTES = std::uint64_t{1} << 30;
@@ -152,6 +152,12 @@ std::string encode_frame(const RealisationRecord& record, const std::string& pat
   out.vector(record.time_s);
   out.vector(record.voltage_v);
   out.vector(record.charge_c);
+  out.vector(record.measured_voltage_v);
+  out.u32(static_cast<std::uint32_t>(record.extras.size()));
+  for (const RecordExtra& e : record.extras) {
+    out.text(e.name);
+    out.vector(e.values);
+  }
 
   std::string& bytes = out.bytes();
   const std::uint64_t payload = bytes.size() - LENGTH_BYTES;
@@ -190,8 +196,16 @@ RealisationRecord decode_payload(std::string_view payload, const std::string& pa
     column.resize(asperities);
     in.doubles(asperities, column.data());
   }
-  if (!in.vector(record.time_s) || !in.vector(record.voltage_v) || !in.vector(record.charge_c) || in.left() != 0)
+  std::uint32_t extras = 0;
+  if (!in.vector(record.time_s) || !in.vector(record.voltage_v) || !in.vector(record.charge_c) ||
+      !in.vector(record.measured_voltage_v) || !in.u32(extras))
     throw malformed("does not parse");
+  for (std::uint32_t i = 0; i < extras; ++i) {
+    RecordExtra e;
+    if (!in.text(e.name) || !in.vector(e.values)) throw malformed("does not parse");
+    record.extras.push_back(std::move(e));
+  }
+  if (in.left() != 0) throw malformed("does not parse");
   return record;
 }
 

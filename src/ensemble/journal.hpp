@@ -5,7 +5,7 @@
 //! opening cuts off. The final HDF5 output is assembled from the records, then the journal
 //! is removed.
 //!
-//! File format, version 1. Integers are little-endian, fixed width, written byte by byte;
+//! File format, version 2. Integers are little-endian, fixed width, written byte by byte;
 //! doubles are their IEEE-754 bit pattern as a u64 (std::bit_cast), so files are portable
 //! between machines and values come back bitwise.
 //!
@@ -17,6 +17,8 @@
 //!            | u32 ASPERITY_COLUMN_COUNT | u64 asperity count a
 //!            | ASPERITY_COLUMN_COUNT × a doubles, column after column (AsperityColumn order)
 //!            | u64 n | n doubles time_s | u64 n | n doubles voltage_v | u64 n | n doubles charge_c
+//!            | u64 n | n doubles measured_voltage_v
+//!            | u32 extras | per extra: u32 n | n bytes name | u64 m | m doubles values
 //!
 //! Recovery: records are read in file order up to the first one that is short, declares
 //! more than 1 GiB, or fails its checksum. That record and everything after it are cut off

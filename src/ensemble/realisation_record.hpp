@@ -65,6 +65,14 @@ enum class AsperityColumn : std::size_t {
 inline constexpr std::size_t ASPERITY_COLUMN_COUNT = static_cast<std::size_t>(AsperityColumn::count_);
 const ScalarInfo& column_info(AsperityColumn column);
 
+//! A named list of numbers a record carries besides its scalars and columns: the values an
+//! [[ensemble.draw]] gave it ("draw:<parameter>"), or what a caller computed from it (the
+//! inverse calibration's truths and estimates). Journalled with the record.
+struct RecordExtra {
+  std::string name;
+  std::vector<double> values;
+};
+
 struct RealisationRecord {
   std::uint64_t realisation = 0;
   //! false: the model broke (x reached l under `flag`, an integrator or contact failure,
@@ -76,6 +84,17 @@ struct RealisationRecord {
   std::array<std::vector<double>, ASPERITY_COLUMN_COUNT> asperities;
   //! Traces, only for the study's trace realisations: time, clean voltage, charge.
   std::vector<double> time_s, voltage_v, charge_c;
+  //! The voltage with the study's [noise] (what the spectra analysed), with the traces; empty without [noise].
+  std::vector<double> measured_voltage_v;
+  //! Named extras, in the order they were added.
+  std::vector<RecordExtra> extras;
+
+  //! The extra called `name`, or nullptr.
+  [[nodiscard]] const RecordExtra* extra(std::string_view name) const {
+    for (const RecordExtra& e : extras)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
 
   [[nodiscard]] double scalar(Scalar s) const { return scalars[static_cast<std::size_t>(s)]; }
   double& scalar(Scalar s) { return scalars[static_cast<std::size_t>(s)]; }

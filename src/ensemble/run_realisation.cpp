@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "core/random_stream.hpp"
 #include "core/format.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
@@ -72,13 +73,34 @@ std::string flagged_failure(const Study& study, const RunResult& result) {
   return "the run was marked invalid";
 }
 
+//! `base` with realisation r's [[ensemble.draw]] values set (re-read from its text, like a
+//! sweep point); each value is recorded as the extra "draw:<parameter>".
+Study with_draws(const Study& base, std::uint64_t realisation, RealisationRecord& record) {
+  std::vector<ParameterOverride> overrides = base.overrides;
+  const auto& draws = base.ensemble->draws;
+  for (std::size_t i = 0; i < draws.size(); ++i) {
+    RandomEngine engine = random_stream(base.seed, realisation, StreamKind::draws, i);
+    const double value = draws[i].draw(engine);
+    overrides.push_back({draws[i].parameter, value});
+    record.extras.push_back({"draw:" + draws[i].parameter, {value}});
+  }
+  try {
+    return parse_study(base.text, base.file, std::nullopt, overrides);
+  } catch (const InputError& e) {
+    // The prior itself reaches values the study cannot take: every such draw would fail.
+    throw InputError("realisation " + std::to_string(realisation) + ": a value drawn by [[ensemble.draw]] is refused: " + e.what());
+  }
+}
+
 }  // namespace
 
 RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces) {
   RealisationRecord record;
   record.realisation = realisation;
   try {
-    const Study study = study_for_realisation(base, realisation);
+    const bool drawn = base.ensemble && !base.ensemble->draws.empty();
+    const Study study = drawn ? study_for_realisation(with_draws(base, realisation, record), realisation)
+                              : study_for_realisation(base, realisation);
     const RunResult result = run_study(study, RunOptions{.show_progress = false});
     const RunSummary summary = summarise(study, result);
     fill_scalars(study, result, summary, record);
@@ -91,9 +113,12 @@ RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, 
       record.time_s.assign(result.times_s.begin(), result.times_s.begin() + static_cast<long>(result.circuit_samples));
       record.voltage_v = result.circuit.voltage_v;
       record.charge_c = result.circuit.charge_c;
+      record.measured_voltage_v = result.measured_voltage_v;
     }
   } catch (const ModelError& e) {
+    std::vector<RecordExtra> draws = std::move(record.extras);  // what the realisation drew, kept
     record = RealisationRecord{};
+    record.extras = std::move(draws);
     record.realisation = realisation;
     record.valid = false;
     record.failure = e.what();

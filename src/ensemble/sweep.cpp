@@ -33,7 +33,8 @@ void check_memory(const std::vector<GridPoint>& grid) {
         random ? random->mean_summit_count() : static_cast<double>(s.surface->sample(0, 0).asperities.size());
     const double samples = std::round(s.duration_s * s.sample_rate_hz) + 1.0;
     bytes += static_cast<double>(s.ensemble->realisations) * (600.0 + 100.0 * asperities) +
-             static_cast<double>(s.ensemble->trace_realisations.size()) * 24.0 * samples;
+             static_cast<double>(s.ensemble->trace_all ? s.ensemble->realisations : s.ensemble->trace_realisations.size()) *
+                 (s.noise ? 32.0 : 24.0) * samples;
   }
   if (bytes > LIMIT_BYTES)
     throw InputError(grid.front().study.file + ": [ensemble] realisations = " +

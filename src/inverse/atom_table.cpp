@@ -97,7 +97,7 @@ void AtomTable::make_splines() {
 }
 
 AtomTable::AtomTable(const KnownDevice& device, const RecordGrid& grid, AtomTableData data)
-    : device_(device), grid_(grid), data_(std::move(data)), envelope_(device, envelope_span(grid), grid.step_s / 4.0) {
+    : device_(device), grid_(grid), data_(std::move(data)), envelope_(device, envelope_span(grid), grid.step_s) {
   const std::size_t stored_head_samples = data_.head_samples;
   finish();
   if (data_.head_samples != stored_head_samples || data_.heads.size() != head_points() * data_.head_samples ||
@@ -276,8 +276,9 @@ void AtomTable::evaluate(double k, std::span<double> value, std::span<double> d_
   const double scale = device_.voltage_scale_v() / device_.model.belt_velocity_m_per_s;
   if (blend_first < grid_.samples) {
     const double u0 = grid_.at(blend_first) - tb;  // t - tb at the first tail sample
-    // The envelope table has the record's step, so every sample sits at the same fraction
-    // between two table entries: one index and one weight for the whole loop.
+    // The envelope table has the record's step (both constructors make it so), so every
+    // sample sits at the same fraction between two table entries: one index and one weight
+    // for the whole loop.
     const std::vector<double>& env = envelope_.values();
     const std::vector<double>& env_slope = envelope_.slopes();
     const double position = std::max(0.0, (u0 + de) / envelope_.step_s());

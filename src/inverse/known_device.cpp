@@ -137,7 +137,8 @@ KnownDevice known_device_from_study(const Study& study) {
   device.circuit = study.circuit;
   device.duration_s = study.duration_s;
   device.sample_rate_hz = study.sample_rate_hz;
-  const std::vector<Asperity>& list = study.asperities.empty() ? study.population.asperities : study.asperities;
+  // A fixed list (checked above) is the same in every realisation.
+  const std::vector<Asperity> list = study.asperities.empty() ? study.surface->sample(study.seed, 0).asperities : study.asperities;
   if (list.empty()) throw InputError(file + ": the known device study has no asperity to take the shared parameters from");
   device.asperity = list.front();
   for (std::size_t i = 0; i < list.size(); ++i) {

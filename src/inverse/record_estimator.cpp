@@ -1,11 +1,12 @@
 #include "inverse/record_estimator.hpp"
 
 #include <algorithm>
-#include <chrono>
+#include <ctime>
 #include <cmath>
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "inverse/sample_statistics.hpp"
 
 namespace stengmc {
 
@@ -34,7 +35,9 @@ RecordEstimator::RecordEstimator(const AtomTable& atoms, const InversePrior& pri
 }
 
 RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
-  const auto start = std::chrono::steady_clock::now();
+  // CPU time of this thread: wall time would count whatever else the machine runs.
+  timespec cpu_start{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu_start);
   const std::size_t samples = atoms_->grid().samples;
   if (voltage.size() != samples) throw Error("RecordEstimator: the record has another length than the atom table's grid");
   RecordEstimate out;
@@ -88,19 +91,8 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   }
 
   // The realised population.
-  std::vector<double> k = best.stiffness_n_per_m;
-  if (!k.empty()) {
-    std::vector<double> sorted = k;
-    std::sort(sorted.begin(), sorted.end());
-    const std::size_t n = sorted.size();
-    out.median_stiffness_n_per_m = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
-    if (n >= 2) {
-      double mean = 0.0, var = 0.0;
-      for (double x : sorted) mean += std::log(x) / static_cast<double>(n);
-      for (double x : sorted) var += (std::log(x) - mean) * (std::log(x) - mean) / static_cast<double>(n - 1);
-      out.sd_log_stiffness = std::sqrt(var);
-    }
-  }
+  out.median_stiffness_n_per_m = sample_median(best.stiffness_n_per_m);
+  out.sd_log_stiffness = sample_sd_log(best.stiffness_n_per_m);
 
   // Checks for the verdict: is what is left white, and how strong was the record.
   const std::vector<double> r = search.residual(best.stiffness_n_per_m);
@@ -112,7 +104,9 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   for (double v : model) var += (v - mean) * (v - mean) / static_cast<double>(samples);
   const double noise_var = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v : out.residual_sigma_v * out.residual_sigma_v;
   out.signal_to_noise_db = noise_var > 0.0 && var > 0.0 ? 10.0 * std::log10(var / noise_var) : 0.0;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  timespec cpu_end{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu_end);
+  out.seconds = static_cast<double>(cpu_end.tv_sec - cpu_start.tv_sec) + 1e-9 * static_cast<double>(cpu_end.tv_nsec - cpu_start.tv_nsec);
   return out;
 }
 

@@ -39,7 +39,7 @@ struct RecordEstimate {
   std::size_t lines_outside_prior = 0;  //!< identified k beyond the prior's 1e-4 / 1 - 1e-4 quantiles
   bool more_than_prior_allows = false;  //!< one atom more than the prior's largest count still explains much
   double signal_to_noise_db = 0.0;      //!< 10 log10(var(model) / sigma^2) of the chosen fit [dB]
-  double seconds = 0.0;                 //!< wall time of the estimate [s]
+  double seconds = 0.0;                 //!< CPU time of the estimate (its thread's) [s]
 };
 
 class RecordEstimator {

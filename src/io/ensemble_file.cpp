@@ -56,6 +56,26 @@ void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
   }
 }
 
+//! [[ensemble.draw]] values, one row per realisation in /realisations order.
+void write_draws(Hdf5Writer& f, const Study& base, const std::vector<GridPoint>& grid) {
+  const auto& draws = base.ensemble->draws;
+  if (draws.empty()) return;
+  std::vector<std::string> names;
+  for (const DrawAxis& d : draws) names.push_back(d.parameter);
+  std::vector<std::vector<double>> rows;
+  for (const GridPoint& point : grid)
+    for (const RealisationRecord& r : point.run.records) {
+      std::vector<double> row;
+      for (const DrawAxis& d : draws) {
+        const RecordExtra* e = r.extra("draw:" + d.parameter);
+        row.push_back(e && !e->values.empty() ? e->values.front() : 0.0);
+      }
+      rows.push_back(std::move(row));
+    }
+  f.write("/draws/parameter", names, "text");
+  f.write("/draws/values", rows, "as each parameter");
+}
+
 void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
   for (std::size_t g = 0; g < grid.size(); ++g)
     for (const RealisationRecord& r : grid[g].run.records) {
@@ -65,6 +85,7 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
       f.write(group + "/time", r.time_s, "s");
       f.write(group + "/voltage", r.voltage_v, "V");
       f.write(group + "/charge", r.charge_c, "C");
+      if (!r.measured_voltage_v.empty()) f.write(group + "/measured_voltage", r.measured_voltage_v, "V");
     }
 }
 
@@ -156,6 +177,7 @@ void write_ensemble_file(const std::string& path, const Study& base, const std::
   file.attribute("/", "only_realisation", static_cast<std::int64_t>(only ? static_cast<std::int64_t>(*only) : -1));
   write_grid(file, base, grid);
   write_realisations(file, grid);
+  write_draws(file, base, grid);
   write_traces(file, grid);
   write_summary(file, grid);
   file.commit();

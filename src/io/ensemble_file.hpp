@@ -6,7 +6,10 @@
 //!                   asperity_offset (entries + 1)
 //!   /asperities/    every AsperityColumn by name, flat over the realisations:
 //!                   realisation j's asperities are [asperity_offset[j], asperity_offset[j+1])
+//!   /draws/         [[ensemble.draw]] only: parameter (text, one per draw), values
+//!                   (realisations x draws, in /realisations order)
 //!   /traces/realisation_<r>/{time, voltage, charge}  for [ensemble] trace_realisations
+//!                   (or trace_all), and measured_voltage with [noise]
 //!                   (in a sweep: /traces/point_<g>/realisation_<r>/...)
 //!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point: count, mean, mean_low, mean_high, std, std_low,
 //!                   std_high, median, median_low, median_high, p05, p05_low, p05_high,

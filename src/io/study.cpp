@@ -183,6 +183,9 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
     study.noise = read_noise_settings(*noise);
     if (!study.spectrum) noise->fail("snr_db", "needs a [spectrum] table: the noise is added to the voltage the spectra analyse");
   }
+  // [inverse] (the prior of `stengmc calibrate` / `invert`) belongs to the inverse layer,
+  // which reads and checks it itself.
+  if (root.has("inverse")) document.defer_table("inverse");
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);
@@ -237,9 +240,10 @@ Study read_study(const std::string& file, std::optional<std::uint64_t> realisati
   return parse(*document, realisation, overrides);
 }
 
-Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation) {
+Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation,
+                  const std::vector<ParameterOverride>& overrides) {
   auto document = TomlDocument::from_string(text, file);
-  return parse(*document, realisation, {});
+  return parse(*document, realisation, overrides);
 }
 
 }  // namespace stengmc

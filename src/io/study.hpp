@@ -87,8 +87,10 @@ struct Study {
 Study read_study(const std::string& file, std::optional<std::uint64_t> realisation = 0,
                  const std::vector<ParameterOverride>& overrides = {});
 
-//! The same from text (tests); `file` is used in messages and to resolve surface paths.
-Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation = 0);
+//! The same from text (tests, studies made by the program); `file` is used in messages and
+//! to resolve surface paths.
+Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation = 0,
+                  const std::vector<ParameterOverride>& overrides = {});
 
 //! `base` (read without a realisation, or with another) at realisation `realisation`:
 //! population and asperities drawn from (seed, realisation) alone.

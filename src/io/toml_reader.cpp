@@ -96,6 +96,11 @@ bool TomlDocument::has_path(std::string_view dotted_path) const {
 
 void TomlDocument::note_read(const toml::table& table, std::string_view key) { read_[&table].emplace(key); }
 
+void TomlDocument::defer_table(std::string_view key) {
+  note_read(table_, key);
+  deferred_.emplace(key);
+}
+
 void TomlDocument::collect_unknown(const toml::table& table, const std::string& path,
                                    std::vector<std::string>& out) const {
   const auto found = read_.find(&table);
@@ -111,6 +116,7 @@ void TomlDocument::collect_unknown(const toml::table& table, const std::string& 
                     "'" + (allowed.empty() ? "" : "; allowed here: " + allowed));
       continue;
     }
+    if (&table == &table_ && deferred_.count(name) > 0) continue;
     if (const auto* sub = node.as_table()) collect_unknown(*sub, qualified, out);
     if (const auto* array = node.as_array())
       for (std::size_t i = 0; i < array->size(); ++i)

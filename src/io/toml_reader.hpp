@@ -83,6 +83,9 @@ class TomlDocument {
   //! Throws InputError listing every key that no reader asked for, with its line; with a
   //! `prefix` ("spectrum"), only keys in that table (when a command reads one table of a study).
   void reject_unknown_keys(std::string_view prefix = "") const;
+  //! The root table `key` is read (and its keys checked) by another part of the program
+  //! (e.g. [inverse] by the inverse commands): reject_unknown_keys leaves it alone.
+  void defer_table(std::string_view key);
 
   [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] const std::string& text() const { return text_; }
@@ -97,6 +100,7 @@ class TomlDocument {
   std::string file_;
   std::string text_;
   std::map<const toml::table*, std::set<std::string, std::less<>>> read_;
+  std::set<std::string, std::less<>> deferred_;
 };
 
 }  // namespace stengmc

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "spectral/local_noise_floor.hpp"
 
 namespace stengmc {
 
@@ -127,8 +128,9 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
   const auto& a = spectrum.amplitude;
   if (a.size() != spectrum.frequency_hz.size()) throw InputError("find_peaks: spectrum frequency and amplitude sizes differ");
   if (!(options.prominence_over_floor >= 0.0) || !(options.min_separation_hz >= 0.0) ||
-      !(options.leakage_margin >= 0.0)) {
-    throw InputError("find_peaks: prominence_over_floor, min_separation_hz and leakage_margin must be >= 0");
+      !(options.leakage_margin >= 0.0) || !(options.max_frequency_hz >= 0.0) || !(options.floor_window_hz >= 0.0)) {
+    throw InputError("find_peaks: prominence_over_floor, min_separation_hz, leakage_margin, max_frequency_hz and "
+                     "floor_window_hz must be >= 0");
   }
   // The spectrum must come from these samples at this rate, or refinement looks elsewhere.
   const double expected_resolution = sample_rate_hz / static_cast<double>(signal.size());
@@ -141,10 +143,15 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
   // Every test below only removes a candidate, so they run cheapest first: height (a
   // prominence never exceeds its height) drops the noise maxima, side lobes go at the leakage
   // test, and the O(N) prominence walk is left for the few that could be lines.
-  const double threshold = options.prominence_over_floor * noise_floor(spectrum);
+  const std::vector<double> floor = options.floor_window_hz > 0.0
+                                        ? local_noise_floor(spectrum, options.floor_window_hz)
+                                        : std::vector<double>(a.size(), noise_floor(spectrum));
+  auto threshold = [&](std::size_t bin) { return options.prominence_over_floor * floor[bin]; };
+  const double top = options.max_frequency_hz > 0.0 ? options.max_frequency_hz : INFINITY;
   std::vector<std::size_t> candidates;
   for (std::size_t bin : local_maxima(a)) {
-    if (spectrum.frequency_hz[bin] >= options.min_frequency_hz && a[bin] > threshold) candidates.push_back(bin);
+    const double f = spectrum.frequency_hz[bin];
+    if (f >= options.min_frequency_hz && f <= top && a[bin] > threshold(bin)) candidates.push_back(bin);
   }
   // Strongest first (ties: lower bin, so the result never depends on sort stability).
   std::sort(candidates.begin(), candidates.end(),
@@ -171,7 +178,7 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
       if (a[bin] <= options.leakage_margin * leakage) continue;
     }
     const double p = prominence(a, bin);
-    if (p <= threshold) continue;
+    if (p <= threshold(bin)) continue;
     peaks.push_back(refine(spectrum, analyzer, signal, sample_rate_hz, {bin, p}));
   }
   std::sort(peaks.begin(), peaks.end(), [](const Peak& x, const Peak& y) { return x.frequency_hz < y.frequency_hz; });

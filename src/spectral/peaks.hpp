@@ -13,6 +13,10 @@ struct PeakOptions {
   double prominence_over_floor = 10.0;  //!< a peak's prominence must exceed this x the noise floor
   double min_separation_hz = 0.0;       //!< of two peaks closer than this, the weaker is dropped
   double min_frequency_hz = 0.0;        //!< ignore peaks below (DC, drift)
+  double max_frequency_hz = 0.0;        //!< ignore peaks above (0: up to Nyquist), e.g. above a device's highest line
+  //! > 0: the floor is local, the running median over this width (local_noise_floor.hpp)
+  //! instead of one median over 0 .. Nyquist [Hz]
+  double floor_window_hz = 0.0;
   std::size_t max_peaks = 64;           //!< keep at most this many, strongest first
   //! drop a peak not above this x the summed side-lobe leakage the stronger kept peaks' lines
   //! put at its frequency (window response incl. negative-frequency images); 0 disables.

@@ -19,6 +19,10 @@ SpectrumSettings read_spectrum_settings(TomlTable& table) {
   s.peaks.min_frequency_hz = table.non_negative("min_frequency_hz", s.peaks.min_frequency_hz);
   s.peaks.leakage_margin = table.non_negative("leakage_margin", s.peaks.leakage_margin);
   s.peaks.max_peaks = static_cast<std::size_t>(table.integer("max_peaks", static_cast<long long>(s.peaks.max_peaks), 1));
+  s.peaks.max_frequency_hz = table.non_negative("max_frequency_hz", s.peaks.max_frequency_hz);
+  if (s.peaks.max_frequency_hz > 0.0 && s.peaks.max_frequency_hz <= s.peaks.min_frequency_hz)
+    table.fail("max_frequency_hz", "must be > min_frequency_hz (or 0 for up to Nyquist)");
+  s.peaks.floor_window_hz = table.non_negative("floor_window_hz", s.peaks.floor_window_hz);
   s.esprit.min_frequency_hz = s.peaks.min_frequency_hz;
   s.high_resolution = table.boolean("high_resolution", s.high_resolution);
   s.esprit.max_lines = static_cast<std::size_t>(table.integer("max_lines", static_cast<long long>(s.esprit.max_lines), 1));

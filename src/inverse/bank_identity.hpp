@@ -1,0 +1,33 @@
+#pragma once
+//! What a calibration bank was made from, and its hash: a bank is valid only for the same
+//! known device, prior, record grid and estimator (README: inverse estimation, "banks").
+#include <cstdint>
+#include <string>
+
+#include "inverse/inverse_prior.hpp"
+#include "inverse/known_device.hpp"
+#include "inverse/record_grid.hpp"
+
+namespace stengmc {
+
+//! Bumped whenever the estimator's results change for the same inputs: banks made by another
+//! estimator version are refused (their calibration describes another estimator).
+inline constexpr int ESTIMATOR_VERSION = 1;
+
+struct BankIdentity {
+  std::string device;     //!< KnownDevice::describe()
+  std::string prior;      //!< InversePrior::describe()
+  std::string grid;       //!< "start_s = ..., step_s = ..., samples = ..."
+  std::string estimator;  //!< program version and estimator version
+  std::uint64_t hash = 0; //!< FNV-1a over the four
+
+  //! What differs from `other`, in words ("" when nothing does).
+  [[nodiscard]] std::string differences(const BankIdentity& other) const;
+};
+
+BankIdentity bank_identity(const KnownDevice& device, const InversePrior& prior, const RecordGrid& grid);
+
+//! The device study's record grid (t = 0 .. duration_s at sample_rate_hz).
+RecordGrid device_grid(const KnownDevice& device);
+
+}  // namespace stengmc

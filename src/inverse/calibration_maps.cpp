@@ -1,0 +1,189 @@
+#include "inverse/calibration_maps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "inverse/naive_count.hpp"
+
+namespace stengmc {
+
+namespace {
+
+constexpr int MAX_OFFSET = 3;                 // confusion offsets n - n-hat considered
+constexpr double JEFFREYS = 0.5;
+constexpr std::size_t CONFUSION_RECORDS = 60;  // pooled until this many
+constexpr std::size_t CONFORMAL_RECORDS = 100;
+constexpr double Z90 = 1.6448536269514722;
+
+//! The split-conformal quantile: the ceil(level (N + 1))-th smallest score (the largest when
+//! that exceeds N).
+double conformal_quantile(std::vector<double> scores, double level) {
+  if (scores.empty()) return 0.0;
+  std::sort(scores.begin(), scores.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(level * static_cast<double>(scores.size() + 1)));
+  return scores[std::min(rank, scores.size()) - 1];
+}
+
+//! Indices of samples whose n-hat lies within the smallest window around m holding `least`
+//! samples that `keep` accepts (or all of them).
+template <typename Keep>
+std::vector<const CalibrationSample*> neighbourhood(const std::vector<CalibrationSample>& samples, std::size_t m,
+                                                   std::size_t least, Keep keep) {
+  std::vector<const CalibrationSample*> out;
+  for (std::size_t w = 0; w <= 64; ++w) {
+    out.clear();
+    for (const CalibrationSample& s : samples)
+      if (s.valid && keep(s) && (s.count + w >= m && s.count <= m + w)) out.push_back(&s);
+    if (out.size() >= least) break;
+  }
+  return out;
+}
+
+}  // namespace
+
+CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& samples, const InversePrior& prior) {
+  CalibrationMaps maps;
+  maps.count_min = prior.count_min;
+  maps.count_max = prior.count_max;
+  const std::size_t counts = prior.count_max - prior.count_min + 1;
+  for (const CalibrationSample& s : samples) maps.records += s.valid;
+  if (maps.records == 0) throw Error("calibration: no valid record to fit the maps on");
+  auto all = [](const CalibrationSample&) { return true; };
+
+  // Count confusion.
+  maps.confusion.assign(counts, std::vector<double>(counts, 0.0));
+  for (std::size_t mi = 0; mi < counts; ++mi) {
+    const std::size_t m = prior.count_min + mi;
+    std::vector<double> offsets(2 * MAX_OFFSET + 1, JEFFREYS);
+    for (const CalibrationSample* s : neighbourhood(samples, m, CONFUSION_RECORDS, all)) {
+      const long d = std::clamp(static_cast<long>(s->true_count()) - static_cast<long>(s->count), -static_cast<long>(MAX_OFFSET),
+                                static_cast<long>(MAX_OFFSET));
+      offsets[static_cast<std::size_t>(d + MAX_OFFSET)] += 1.0;
+    }
+    double total = 0.0;
+    for (int d = -MAX_OFFSET; d <= MAX_OFFSET; ++d) {
+      const long n = static_cast<long>(m) + d;
+      if (n < static_cast<long>(prior.count_min) || n > static_cast<long>(prior.count_max)) continue;
+      maps.confusion[mi][static_cast<std::size_t>(n) - prior.count_min] = offsets[static_cast<std::size_t>(d + MAX_OFFSET)];
+      total += offsets[static_cast<std::size_t>(d + MAX_OFFSET)];
+    }
+    for (double& p : maps.confusion[mi]) p /= total;
+  }
+
+  // Population intervals, Mondrian by n-hat.
+  maps.median_log_half_width.assign(counts, 0.0);
+  maps.sd_log_half_width.assign(counts, 0.0);
+  for (std::size_t mi = 0; mi < counts; ++mi) {
+    const std::size_t m = prior.count_min + mi;
+    std::vector<double> median_scores, sd_scores;
+    for (const CalibrationSample* s : neighbourhood(samples, m, CONFORMAL_RECORDS, [](const CalibrationSample& x) { return x.count > 0; }))
+      median_scores.push_back(std::abs(std::log(s->median / s->true_median())));
+    for (const CalibrationSample* s : neighbourhood(samples, m, CONFORMAL_RECORDS,
+                                                    [](const CalibrationSample& x) { return x.count >= 2 && x.true_count() >= 2; }))
+      sd_scores.push_back(std::abs(s->sd_log - s->true_sd_log()));
+    maps.median_log_half_width[mi] = conformal_quantile(median_scores, INTERVAL_LEVEL);
+    maps.sd_log_half_width[mi] = conformal_quantile(sd_scores, INTERVAL_LEVEL);
+  }
+
+  // Line errors: records counted exactly, lines paired in order (the optimal matching for
+  // a convex cost in one dimension).
+  std::vector<double> z;
+  for (const CalibrationSample& s : samples) {
+    if (!s.valid || s.count != s.true_count()) continue;
+    std::vector<double> truth = s.true_stiffness;
+    std::sort(truth.begin(), truth.end());
+    for (std::size_t i = 0; i < s.count; ++i)
+      if (s.log_stiffness_se[i] > 0.0) z.push_back(std::abs(std::log(s.stiffness[i] / truth[i])) / s.log_stiffness_se[i]);
+  }
+  if (!z.empty()) maps.line_error_scale = conformal_quantile(z, INTERVAL_LEVEL) / Z90;
+
+  // The naive count's best threshold, and the bank's own figures.
+  const std::size_t thresholds = samples.front().naive_counts.size();
+  double best = INFINITY;
+  for (std::size_t t = 0; t < thresholds; ++t) {
+    double se = 0.0;
+    std::size_t n = 0;
+    for (const CalibrationSample& s : samples)
+      if (s.valid && t < s.naive_counts.size()) {
+        const double e = s.naive_counts[t] - static_cast<double>(s.true_count());
+        se += e * e;
+        ++n;
+      }
+    if (n > 0 && se / static_cast<double>(n) < best) best = se / static_cast<double>(n), maps.naive_threshold_index = t;
+  }
+  maps.naive_threshold = naive_count_thresholds()[std::min(maps.naive_threshold_index, naive_count_thresholds().size() - 1)];
+  double se = 0.0, exact = 0.0, naive_exact = 0.0;
+  for (const CalibrationSample& s : samples) {
+    if (!s.valid) continue;
+    const double e = static_cast<double>(s.count) - static_cast<double>(s.true_count());
+    se += e * e;
+    exact += e == 0.0;
+    if (maps.naive_threshold_index < s.naive_counts.size())
+      naive_exact += s.naive_counts[maps.naive_threshold_index] == static_cast<double>(s.true_count());
+  }
+  const double n = static_cast<double>(maps.records);
+  maps.bank_count_rmse = std::sqrt(se / n);
+  maps.bank_exact_rate = exact / n;
+  maps.bank_naive_rmse = std::sqrt(best);
+  maps.bank_naive_exact_rate = naive_exact / n;
+  return maps;
+}
+
+CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const CalibrationMaps* maps, const InversePrior& prior) {
+  CalibratedEstimate out;
+  out.calibrated = maps != nullptr;
+  const std::size_t counts = prior.count_max - prior.count_min + 1;
+  for (std::size_t i = 0; i < counts; ++i) out.counts.push_back(prior.count_min + i);
+  out.probability.assign(counts, 0.0);
+  for (std::size_t j = 0; j < e.posterior.counts.size(); ++j) {
+    const std::size_t m = e.posterior.counts[j];
+    if (m < prior.count_min || m > prior.count_max) continue;
+    const double p = e.posterior.probability[j];
+    if (!maps) {
+      out.probability[m - prior.count_min] += p;
+      continue;
+    }
+    for (std::size_t i = 0; i < counts; ++i) out.probability[i] += p * maps->confusion[m - prior.count_min][i];
+  }
+  std::size_t mode = 0;
+  for (std::size_t i = 1; i < counts; ++i)
+    if (out.probability[i] > out.probability[mode]) mode = i;
+  out.count = out.counts[mode];
+  // Shortest run around the mode holding >= 0.9: grow towards the more probable side.
+  std::size_t lo = mode, hi = mode;
+  double mass = out.probability[mode];
+  while (mass < INTERVAL_LEVEL - 1e-12 && (lo > 0 || hi + 1 < counts)) {
+    const double left = lo > 0 ? out.probability[lo - 1] : -1.0;
+    const double right = hi + 1 < counts ? out.probability[hi + 1] : -1.0;
+    if (left >= right) mass += out.probability[--lo];
+    else mass += out.probability[++hi];
+  }
+  out.interval_low = out.counts[lo];
+  out.interval_high = out.counts[hi];
+
+  out.median = e.median_stiffness_n_per_m;
+  out.sd_log = e.sd_log_stiffness;
+  out.sd_known = e.count >= 2;
+  const double scale = maps ? maps->line_error_scale : 1.0;
+  for (const EstimatedLine& line : e.lines) {
+    out.line_low.push_back(line.stiffness_n_per_m * std::exp(-Z90 * scale * line.log_stiffness_se));
+    out.line_high.push_back(line.stiffness_n_per_m * std::exp(Z90 * scale * line.log_stiffness_se));
+  }
+  if (maps && e.count >= prior.count_min && e.count <= prior.count_max) {
+    const std::size_t mi = e.count - prior.count_min;
+    const double h = maps->median_log_half_width[mi];
+    out.median_low = out.median * std::exp(-h);
+    out.median_high = out.median * std::exp(h);
+    const double hs = maps->sd_log_half_width[mi];
+    out.sd_log_low = std::max(0.0, out.sd_log - hs);
+    out.sd_log_high = out.sd_log + hs;
+    out.population_intervals = true;
+  } else {
+    out.median_low = out.median_high = out.median;
+    out.sd_log_low = out.sd_log_high = out.sd_log;
+  }
+  return out;
+}
+
+}  // namespace stengmc

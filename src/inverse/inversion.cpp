@@ -1,0 +1,120 @@
+#include "inverse/inversion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/constants.hpp"
+#include "core/format.hpp"
+
+namespace stengmc {
+
+namespace {
+
+// The default FFT threshold without a bank (the [spectrum] default).
+constexpr double DEFAULT_NAIVE_THRESHOLD = 10.0;
+// A residual whose power inside the lines' band exceeds the noise band's by this factor is
+// not white: ~200 bins each side give the ratio a standard deviation of ~0.1.
+constexpr double WHITENESS_LIMIT = 1.3;
+
+std::string percent(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g %%", 100.0 * x);
+  return text;
+}
+
+std::string number(double x, const char* format = "%.4g") {
+  char text[64];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+}  // namespace
+
+Inverter::Inverter(const InverseSetup& setup, const AtomTable& atoms, const CalibrationMaps* maps)
+    : setup_(&setup),
+      atoms_(&atoms),
+      maps_(maps),
+      estimator_(atoms, setup.prior),
+      naive_(atoms.grid().samples, atoms.grid().sample_rate_hz(),
+             atoms.device().angular_frequency(setup.prior.support().first) / (2.0 * PI),
+             atoms.device().angular_frequency(setup.prior.support().second) / (2.0 * PI)),
+      model_(atoms) {}
+
+Inversion Inverter::invert(const std::string& name, std::span<const double> voltage) {
+  Inversion out;
+  out.name = name;
+  out.raw = estimator_.estimate(voltage);
+  out.calibrated = calibrate_estimate(out.raw, maps_, setup_->prior);
+  const double threshold = maps_ ? maps_->naive_threshold : DEFAULT_NAIVE_THRESHOLD;
+  out.naive_count = naive_.count(voltage, std::vector<double>{threshold}).front();
+  std::vector<double> k;
+  for (const EstimatedLine& line : out.raw.lines) k.push_back(line.stiffness_n_per_m);
+  out.laws = compare_stiffness_laws(k);
+  out.model_v.resize(voltage.size());
+  model_.evaluate(k, out.model_v);
+
+  // ---- the verdict
+  const RecordEstimate& e = out.raw;
+  const CalibratedEstimate& c = out.calibrated;
+  const KnownDevice& device = setup_->device;
+  const double width_hz = device.damping_rate_per_s() / PI;  // a line's full width at half maximum
+  std::size_t p_index = c.count - c.counts.front();
+  char count_line[256];
+  std::snprintf(count_line, sizeof count_line, "%zu sliding asperities (90 %% interval %zu-%zu, P = %.3f, %s); an FFT peak count says %.0f.",
+                c.count, c.interval_low, c.interval_high, c.probability[p_index],
+                c.calibrated ? "calibrated" : "raw posterior: no bank", out.naive_count);
+  out.verdict.push_back(count_line);
+  std::size_t blended = 0;
+  for (const EstimatedLine& line : e.lines)
+    if (e.lines.size() > 1 && line.nearest_separation_hz < width_hz) ++blended;
+  const std::size_t clear = e.lines.size() - blended;
+  if (!e.lines.empty()) {
+    std::string lines = std::to_string(clear) + " of " + std::to_string(e.lines.size()) +
+                        " lines stand clear of their neighbours (more than one line width, " + number(width_hz / 1e3, "%.3g") +
+                        " kHz): their stiffnesses are trustworthy";
+    double worst = 0.0;
+    for (const EstimatedLine& line : e.lines)
+      if (e.lines.size() == 1 || line.nearest_separation_hz >= width_hz) worst = std::max(worst, line.log_stiffness_se);
+    if (clear > 0) lines += " (to " + percent(1.6448536269514722 * worst * (maps_ ? maps_->line_error_scale : 1.0)) + " or better, 90 %)";
+    out.verdict.push_back(lines + ".");
+  }
+  if (blended > 0)
+    out.verdict.push_back(std::to_string(blended) + " lines lie within one line width of another: resolution limits them. "
+                          "Their number is sure (two coinciding asperities give twice one atom), their individual "
+                          "stiffnesses less so (see each line's interval).");
+  out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
+                        (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
+  if (atoms_->data().check_error > 1e-2)
+    out.verdict.push_back("The atoms match the forward model to " + percent(atoms_->data().check_error) +
+                          " only (stick modulation at this belt velocity): expect biased stiffnesses.");
+
+  // ---- warnings
+  if (!maps_) out.warnings.push_back("no calibration bank: P(n) is the raw Laplace posterior, the population has no intervals (run stengmc calibrate)");
+  if (e.lines_outside_prior > 0)
+    out.warnings.push_back(std::to_string(e.lines_outside_prior) + " line(s) lie outside the prior's stiffness range: the record is outside the prior the calibration describes");
+  if (e.more_than_prior_allows)
+    out.warnings.push_back("the record seems to hold more sliding asperities than the prior's largest count (" +
+                           std::to_string(setup_->prior.count_max) + "): the count is cut at that limit");
+  if (e.in_band_power_ratio > WHITENESS_LIMIT)
+    out.warnings.push_back("what the fit leaves in the lines' band is " + number(e.in_band_power_ratio, "%.2g") +
+                           " x the noise elsewhere: lines the model cannot explain (known parameters off, lines outside the prior, or noise that is not white)");
+  if (e.noise.bins > 0 && std::abs(e.residual_sigma_v / e.noise.sigma_v - 1.0) > 0.1)
+    out.warnings.push_back("the fit's residual (" + number(e.residual_sigma_v, "%.3g") + " V rms) differs from the noise above the lines (" +
+                           number(e.noise.sigma_v, "%.3g") + " V) by more than 10 %: the model does not fit to the noise");
+  const double snr_margin = 3.0;
+  if (e.signal_to_noise_db < setup_->prior.snr_db[0] - snr_margin || e.signal_to_noise_db > setup_->prior.snr_db[1] + snr_margin)
+    out.warnings.push_back("the signal-to-noise ratio (" + number(e.signal_to_noise_db, "%.1f") + " dB) lies outside the prior's " +
+                           number(setup_->prior.snr_db[0], "%.0f") + "-" + number(setup_->prior.snr_db[1], "%.0f") +
+                           " dB: the calibration was not made for it");
+  return out;
+}
+
+std::vector<LawFit> pooled_laws(const std::vector<Inversion>& inversions) {
+  std::vector<double> k;
+  for (const Inversion& inv : inversions)
+    for (const EstimatedLine& line : inv.raw.lines) k.push_back(line.stiffness_n_per_m);
+  return compare_stiffness_laws(k);
+}
+
+}  // namespace stengmc

@@ -1,0 +1,221 @@
+#include "io/calibration_bank_file.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "inverse/naive_count.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_file.hpp"
+
+namespace stengmc {
+
+namespace {
+
+constexpr const char* FILE_TYPE = "stengmc-calibration-bank";
+constexpr std::int64_t FORMAT_VERSION = 1;
+
+std::string hex(std::uint64_t value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+//! A flat array of rows (row after row) as a 2-D dataset.
+std::vector<std::vector<double>> rows_of(const std::vector<double>& flat, std::size_t columns) {
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = 0; columns > 0 && i + columns <= flat.size(); i += columns)
+    rows.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(i), flat.begin() + static_cast<std::ptrdiff_t>(i + columns));
+  return rows;
+}
+
+std::vector<double> flat_of(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> flat;
+  for (const auto& r : rows) flat.insert(flat.end(), r.begin(), r.end());
+  return flat;
+}
+
+void write_records(Hdf5Writer& f, const std::vector<CalibrationSample>& samples, std::size_t naive_index) {
+  std::vector<std::int64_t> ids, valid, true_count, count, true_offset{0}, estimate_offset{0}, order_offset{0};
+  std::vector<double> snr, first, second, true_median, median, true_sd, sd, noise, residual, band, snr_estimate, seconds, naive;
+  std::vector<double> true_k, k, se, orders, evidence;
+  std::vector<std::vector<double>> naive_counts;
+  for (const CalibrationSample& s : samples) {
+    ids.push_back(static_cast<std::int64_t>(s.realisation));
+    valid.push_back(s.valid ? 1 : 0);
+    true_count.push_back(static_cast<std::int64_t>(s.true_count()));
+    count.push_back(static_cast<std::int64_t>(s.count));
+    snr.push_back(s.snr_db);
+    first.push_back(s.law_first);
+    second.push_back(s.law_second);
+    true_median.push_back(s.true_median());
+    median.push_back(s.median);
+    true_sd.push_back(s.true_sd_log());
+    sd.push_back(s.sd_log);
+    noise.push_back(s.noise_sigma_v);
+    residual.push_back(s.residual_sigma_v);
+    band.push_back(s.band_power_ratio);
+    snr_estimate.push_back(s.snr_estimate_db);
+    seconds.push_back(s.seconds);
+    naive.push_back(naive_index < s.naive_counts.size() ? s.naive_counts[naive_index] : 0.0);
+    std::vector<double> row = s.naive_counts;
+    row.resize(naive_count_thresholds().size(), 0.0);
+    naive_counts.push_back(row);
+    true_k.insert(true_k.end(), s.true_stiffness.begin(), s.true_stiffness.end());
+    true_offset.push_back(static_cast<std::int64_t>(true_k.size()));
+    k.insert(k.end(), s.stiffness.begin(), s.stiffness.end());
+    se.insert(se.end(), s.log_stiffness_se.begin(), s.log_stiffness_se.end());
+    estimate_offset.push_back(static_cast<std::int64_t>(k.size()));
+    orders.insert(orders.end(), s.counts.begin(), s.counts.end());
+    evidence.insert(evidence.end(), s.log_evidence.begin(), s.log_evidence.end());
+    order_offset.push_back(static_cast<std::int64_t>(orders.size()));
+  }
+  f.write("/records/realisation", ids, "index");
+  f.write("/records/valid", valid, "1");
+  f.write("/records/true_count", true_count, "1");
+  f.write("/records/count", count, "1");
+  f.write("/records/snr_db", snr, "dB");
+  f.write("/records/law_first", first, "median [N/m] (lognormal) or shape [-]");
+  f.write("/records/law_second", second, "sigma_log [-] (lognormal) or scale [N/m]");
+  f.write("/records/true_median", true_median, "N/m");
+  f.write("/records/median", median, "N/m");
+  f.write("/records/true_sd_log", true_sd, "1");
+  f.write("/records/sd_log", sd, "1");
+  f.write("/records/noise_sigma", noise, "V");
+  f.write("/records/residual_sigma", residual, "V");
+  f.write("/records/band_power_ratio", band, "1");
+  f.write("/records/snr_estimate_db", snr_estimate, "dB");
+  f.write("/records/seconds", seconds, "s");
+  f.write("/records/naive_count", naive, "1");
+  f.write("/records/naive_counts", naive_counts, "1");
+  f.write("/records/true_stiffness", true_k, "N/m");
+  f.write("/records/true_offset", true_offset, "index");
+  f.write("/records/stiffness", k, "N/m");
+  f.write("/records/log_stiffness_se", se, "1");
+  f.write("/records/estimate_offset", estimate_offset, "index");
+  f.write("/records/orders", orders, "1");
+  f.write("/records/log_evidence", evidence, "1");
+  f.write("/records/order_offset", order_offset, "index");
+}
+
+}  // namespace
+
+void write_calibration_bank(const std::string& path, const CalibrationBank& bank) {
+  Hdf5Writer f(path);
+  write_provenance(f, {.file_type = FILE_TYPE,
+                       .input_file = bank.device_study_file,
+                       .input_text = bank.device_study_text,
+                       .seed = bank.setup.prior.seed,
+                       .surface_file = "",
+                       .surface_text = "",
+                       .auxiliary_inputs = ""});
+  f.attribute("/", "bank_format_version", FORMAT_VERSION);
+  const BankIdentity& id = bank.setup.identity;
+  f.attribute("/", "identity_hash", hex(id.hash));
+  f.attribute("/", "identity_device", id.device);
+  f.attribute("/", "identity_prior", id.prior);
+  f.attribute("/", "identity_grid", id.grid);
+  f.attribute("/", "identity_estimator", id.estimator);
+  f.attribute("/", "prior_study_text", bank.prior_study_text);
+  f.attribute("/", "records_requested", static_cast<std::int64_t>(bank.setup.prior.calibration_records));
+  f.attribute("/", "records_valid", static_cast<std::int64_t>(bank.maps.records));
+  f.attribute("/", "seconds", bank.seconds);
+  f.attribute("/", "atom_seconds", bank.atom_seconds);
+  f.attribute("/", "threads", static_cast<std::int64_t>(bank.threads));
+
+  const AtomTableData& a = bank.atoms;
+  f.write("/atoms/heads", rows_of(a.heads, a.head_samples), "V");
+  f.write("/atoms/head_slopes", rows_of(a.head_slopes, a.head_samples), "V/s");
+  f.write("/atoms/tail_shift_s", a.tail_shift_s, "s");
+  f.write("/atoms/tail_phase_rad", a.tail_phase_rad, "rad");
+  f.write("/atoms/tail_fit_error", a.tail_fit_error, "1");
+  f.attribute("/atoms", "min_stiffness_n_per_m", a.min_stiffness_n_per_m);
+  f.attribute("/atoms", "max_stiffness_n_per_m", a.max_stiffness_n_per_m);
+  f.attribute("/atoms", "head_samples", static_cast<std::int64_t>(a.head_samples));
+  f.attribute("/atoms", "check_error", a.check_error);
+  f.attribute("/atoms", "head_log_step", a.settings.head_log_step);
+  f.attribute("/atoms", "tail_log_step", a.settings.tail_log_step);
+  f.attribute("/atoms", "head_after_breakaway_s", a.settings.head_after_breakaway_s);
+  f.attribute("/atoms", "blend_s", a.settings.blend_s);
+  f.attribute("/atoms", "checks", static_cast<std::int64_t>(a.settings.checks));
+
+  const CalibrationMaps& m = bank.maps;
+  f.write("/maps/confusion", m.confusion, "1");
+  f.write("/maps/median_log_half_width", m.median_log_half_width, "1");
+  f.write("/maps/sd_log_half_width", m.sd_log_half_width, "1");
+  f.write("/maps/naive_thresholds", naive_count_thresholds(), "x local noise floor");
+  f.attribute("/maps", "count_min", static_cast<std::int64_t>(m.count_min));
+  f.attribute("/maps", "count_max", static_cast<std::int64_t>(m.count_max));
+  f.attribute("/maps", "line_error_scale", m.line_error_scale);
+  f.attribute("/maps", "naive_threshold_index", static_cast<std::int64_t>(m.naive_threshold_index));
+  f.attribute("/maps", "naive_threshold", naive_count_thresholds()[m.naive_threshold_index]);
+  f.attribute("/maps", "records", static_cast<std::int64_t>(m.records));
+  f.attribute("/maps", "bank_count_rmse", m.bank_count_rmse);
+  f.attribute("/maps", "bank_exact_rate", m.bank_exact_rate);
+  f.attribute("/maps", "bank_naive_rmse", m.bank_naive_rmse);
+  f.attribute("/maps", "bank_naive_exact_rate", m.bank_naive_exact_rate);
+  write_records(f, bank.samples, m.naive_threshold_index);
+  f.commit();
+}
+
+StoredBank read_calibration_bank(const std::string& path) {
+  Hdf5Reader f(path);
+  const std::string type = f.string_attribute("/", "file_type");
+  if (type != FILE_TYPE)
+    throw InputError(path + ": not a calibration bank (file_type \"" + type + "\"; make one with stengmc calibrate)");
+  const auto version = f.integer_attribute("/", "bank_format_version");
+  if (!version || *version > FORMAT_VERSION)
+    throw InputError(path + ": calibration bank format " + (version ? std::to_string(*version) : std::string("?")) +
+                     " is not one this stengmc reads (" + std::to_string(FORMAT_VERSION) + "); make the bank again");
+  StoredBank bank;
+  bank.path = path;
+  bank.identity.device = f.string_attribute("/", "identity_device");
+  bank.identity.prior = f.string_attribute("/", "identity_prior");
+  bank.identity.grid = f.string_attribute("/", "identity_grid");
+  bank.identity.estimator = f.string_attribute("/", "identity_estimator");
+  bank.identity.hash = std::stoull(f.string_attribute("/", "identity_hash"), nullptr, 16);
+  bank.git_revision = f.string_attribute("/", "git_revision");
+  bank.created_utc = f.string_attribute("/", "created_utc");
+
+  AtomTableData& a = bank.atoms;
+  a.heads = flat_of(f.matrix("/atoms/heads"));
+  a.head_slopes = flat_of(f.matrix("/atoms/head_slopes"));
+  a.tail_shift_s = f.vector("/atoms/tail_shift_s");
+  a.tail_phase_rad = f.vector("/atoms/tail_phase_rad");
+  a.tail_fit_error = f.vector("/atoms/tail_fit_error");
+  auto number = [&](const std::string& object, const std::string& name) {
+    const auto v = f.number_attribute(object, name);
+    if (!v) throw InputError(path + ": attribute " + object + "@" + name + " is missing (a damaged bank?)");
+    return *v;
+  };
+  a.min_stiffness_n_per_m = number("/atoms", "min_stiffness_n_per_m");
+  a.max_stiffness_n_per_m = number("/atoms", "max_stiffness_n_per_m");
+  a.head_samples = static_cast<std::size_t>(number("/atoms", "head_samples"));
+  a.check_error = number("/atoms", "check_error");
+  a.settings.head_log_step = number("/atoms", "head_log_step");
+  a.settings.tail_log_step = number("/atoms", "tail_log_step");
+  a.settings.head_after_breakaway_s = number("/atoms", "head_after_breakaway_s");
+  a.settings.blend_s = number("/atoms", "blend_s");
+  a.settings.checks = static_cast<std::size_t>(number("/atoms", "checks"));
+
+  CalibrationMaps& m = bank.maps;
+  m.confusion = f.matrix("/maps/confusion");
+  m.median_log_half_width = f.vector("/maps/median_log_half_width");
+  m.sd_log_half_width = f.vector("/maps/sd_log_half_width");
+  m.count_min = static_cast<std::size_t>(number("/maps", "count_min"));
+  m.count_max = static_cast<std::size_t>(number("/maps", "count_max"));
+  m.line_error_scale = number("/maps", "line_error_scale");
+  m.naive_threshold_index = static_cast<std::size_t>(number("/maps", "naive_threshold_index"));
+  m.naive_threshold = number("/maps", "naive_threshold");
+  m.records = static_cast<std::size_t>(number("/maps", "records"));
+  m.bank_count_rmse = number("/maps", "bank_count_rmse");
+  m.bank_exact_rate = number("/maps", "bank_exact_rate");
+  m.bank_naive_rmse = number("/maps", "bank_naive_rmse");
+  m.bank_naive_exact_rate = number("/maps", "bank_naive_exact_rate");
+  const std::size_t counts = m.count_max - m.count_min + 1;
+  if (m.confusion.size() != counts || m.median_log_half_width.size() != counts || m.sd_log_half_width.size() != counts)
+    throw InputError(path + ": the bank's maps do not match its count range (a damaged bank?)");
+  return bank;
+}
+
+}  // namespace stengmc

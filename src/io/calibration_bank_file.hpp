@@ -1,0 +1,39 @@
+#pragma once
+//! The calibration bank file (README: inverse estimation, "calibration bank"),
+//! file_type "stengmc-calibration-bank":
+//!   root attributes  provenance (the device study's file and text, calibration seed, program
+//!                    version, git revision, date); identity_hash (hex) and what it hashes:
+//!                    identity_device, identity_prior, identity_grid, identity_estimator;
+//!                    prior_study_text (the ensemble study the records came from);
+//!                    records_requested, records_valid, seconds, atom_seconds, threads
+//!   /atoms/          the atom table (AtomTableData): heads, head_slopes (head points x
+//!                    samples), tail_shift_s, tail_phase_rad, tail_fit_error; attributes
+//!                    min/max_stiffness_n_per_m, head_samples, check_error and its settings
+//!   /maps/           confusion (counts x counts, row n-hat, column true n), median_log_half_width,
+//!                    sd_log_half_width (per n-hat), naive_thresholds; attributes count_min,
+//!                    count_max, line_error_scale, naive_threshold, records and the bank's own figures
+//!   /records/        one entry per simulated record: truth, raw estimate, naive counts;
+//!                    flat k lists with offsets (true_stiffness / true_offset, stiffness,
+//!                    log_stiffness_se / estimate_offset)
+#include <string>
+
+#include "inverse/calibration_run.hpp"
+
+namespace stengmc {
+
+void write_calibration_bank(const std::string& path, const CalibrationBank& bank);
+
+//! What `invert` needs of a bank: its identity, atoms and maps (records are not read).
+struct StoredBank {
+  std::string path;
+  BankIdentity identity;
+  std::string git_revision;
+  std::string created_utc;
+  AtomTableData atoms;
+  CalibrationMaps maps;
+};
+
+//! @throws InputError when the file is not a stengmc calibration bank (or a newer format).
+StoredBank read_calibration_bank(const std::string& path);
+
+}  // namespace stengmc

@@ -1,0 +1,58 @@
+#include "io/inverse_signals.hpp"
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/signal_input.hpp"
+
+namespace stengmc {
+
+namespace {
+
+//! The record of one trace group of an ensemble file.
+NamedRecord trace_record(const Hdf5Reader& file, const std::string& path, const std::string& group) {
+  NamedRecord r;
+  r.name = path + "#" + group.substr(std::string("/traces/").size());
+  r.times_s = file.vector(group + "/time");
+  r.voltage_v = file.has(group + "/measured_voltage") ? file.vector(group + "/measured_voltage") : file.vector(group + "/voltage");
+  return r;
+}
+
+}  // namespace
+
+std::vector<NamedRecord> read_inverse_records(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension == ".csv" || extension == ".CSV") {
+    SignalInput s = read_signal_csv(path);
+    return {{path, std::move(s.times_s), std::move(s.voltage_v)}};
+  }
+  Hdf5Reader file(path);
+  if (file.string_attribute("/", "file_type") == "stengmc-ensemble") {
+    // Traces by realisation id, in /realisations order (sweeps: by grid point).
+    const std::vector<double> ids = file.vector("/realisations/realisation");
+    const std::vector<double> points = file.vector("/realisations/grid_point");
+    const bool sweep = file.integer_attribute("/", "grid_points").value_or(1) > 1;
+    std::vector<NamedRecord> records;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const std::string realisation = "realisation_" + std::to_string(static_cast<long long>(ids[i]));
+      const std::string group = sweep ? "/traces/point_" + std::to_string(static_cast<long long>(points[i])) + "/" + realisation
+                                      : "/traces/" + realisation;
+      if (file.has(group + "/time")) records.push_back(trace_record(file, path, group));
+    }
+    if (records.empty())
+      throw InputError(path + ": the ensemble kept no traces to invert (set [ensemble] trace_all = true, or trace_realisations)");
+    return records;
+  }
+  if (!file.has("/circuit/voltage") || !file.has("/time"))
+    throw InputError(path + ": no /time and /circuit/voltage to invert (give a CSV `t,V`, a run file or an ensemble file)");
+  NamedRecord r;
+  r.name = path;
+  r.voltage_v = file.has("/circuit/measured_voltage") ? file.vector("/circuit/measured_voltage") : file.vector("/circuit/voltage");
+  r.times_s = file.vector("/time");
+  r.times_s.resize(std::min(r.times_s.size(), r.voltage_v.size()));  // an invalid run's circuit stops early
+  return {std::move(r)};
+}
+
+}  // namespace stengmc

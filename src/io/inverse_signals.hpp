@@ -1,0 +1,20 @@
+#pragma once
+//! The records `stengmc invert` reads (README: inverse estimation): a CSV `t,V`; a stengmc
+//! run (or circuit) file, its /circuit/measured_voltage when it has one, else
+//! /circuit/voltage; or a stengmc ensemble file, every kept trace (measured_voltage when
+//! the study had [noise]) as one record.
+#include <string>
+#include <vector>
+
+namespace stengmc {
+
+struct NamedRecord {
+  std::string name;               //!< "path" or "path#realisation_<r>" (ensembles; "#point_<g>/..." in sweeps)
+  std::vector<double> times_s;
+  std::vector<double> voltage_v;
+};
+
+//! @throws InputError for an unreadable file, one without a voltage, or an ensemble without traces.
+std::vector<NamedRecord> read_inverse_records(const std::string& path);
+
+}  // namespace stengmc
