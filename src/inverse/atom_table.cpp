@@ -284,29 +284,37 @@ void AtomTable::evaluate(double k, std::span<double> value, std::span<double> d_
     const double position = std::max(0.0, (u0 + de) / envelope_.step_s());
     const auto base = static_cast<std::size_t>(position);
     const double f = position - static_cast<double>(base);
-    const std::size_t last = env.size() - 2;
-    // cos/sin by rotation, re-seeded every 256 samples against round-off drift.
     const double c_step = std::cos(omega * grid_.step_s), s_step = std::sin(omega * grid_.step_s);
     const double dphase_base = -omega * dtb + ddphi, dphase_per_s = domega;
-    double c = 0.0, s = 0.0;
-    for (std::size_t m = blend_first; m < grid_.samples; ++m) {
-      const std::size_t i = m - blend_first;
-      const double u = u0 + static_cast<double>(i) * grid_.step_s;
-      if (i % 256 == 0) {
-        c = std::cos(omega * u + dphi);
-        s = std::sin(omega * u + dphi);
+    const double envelope_shift = dde - dtb;
+    // The envelope table spans the record and more (envelope_span): no index runs past it.
+    const std::size_t count = std::min(grid_.samples - blend_first, env.size() - 1 - base);
+    // Blocks of 256 samples: cos/sin by rotation inside, re-seeded at each block's start
+    // against round-off drift.
+    constexpr std::size_t BLOCK = 256;
+    for (std::size_t first = 0; first < count; first += BLOCK) {
+      const std::size_t end = std::min(count, first + BLOCK);
+      const double u_first = u0 + static_cast<double>(first) * grid_.step_s;
+      double c = std::cos(omega * u_first + dphi), s = std::sin(omega * u_first + dphi);
+      const double* e = env.data() + base + first;
+      const double* es = env_slope.data() + base + first;
+      double* out = value.data() + blend_first + first;
+      for (std::size_t i = 0; i < end - first; ++i) {
+        const double a = e[i] + f * (e[i + 1] - e[i]);
+        out[i] = scale * a * c;
+        if (derivative || slope) {
+          const double a_slope = es[i] + f * (es[i + 1] - es[i]);
+          const std::size_t m = blend_first + first + i;
+          if (derivative) {
+            const double u = u_first + static_cast<double>(i) * grid_.step_s;
+            d_dlnk[m] = scale * (a_slope * envelope_shift * c - a * s * (dphase_per_s * u + dphase_base));
+          }
+          if (slope) d_dt[m] = scale * (a_slope * c - a * omega * s);
+        }
+        const double cn = c * c_step - s * s_step;
+        s = s * c_step + c * s_step;
+        c = cn;
       }
-      const std::size_t e = std::min(base + i, last);
-      const double a = env[e] + f * (env[e + 1] - env[e]);
-      value[m] = scale * a * c;
-      if (derivative || slope) {
-        const double a_slope = env_slope[e] + f * (env_slope[e + 1] - env_slope[e]);
-        if (derivative) d_dlnk[m] = scale * (a_slope * (dde - dtb) * c - a * s * (dphase_per_s * u + dphase_base));
-        if (slope) d_dt[m] = scale * (a_slope * c - a * omega * s);
-      }
-      const double cn = c * c_step - s * s_step;
-      s = s * c_step + c * s_step;
-      c = cn;
     }
   }
 

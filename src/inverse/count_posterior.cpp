@@ -17,12 +17,14 @@ CountPosterior count_posterior(const std::vector<OrderFit>& fits, double sigma_v
   const double spread = std::max(0.05, std::log(high / low) / 6.0);
   const double s2 = sigma_v * sigma_v;
   for (std::size_t n = 0; n < fits.size(); ++n) {
+    // Orders fitted only along the greedy path (no normal matrix) are far from the best: their
+    // evidence, dominated by -RSS / 2 sigma^2, is negligible without the determinant too.
     if (n < prior.count_min || n > prior.count_max) continue;
     const OrderFit& fit = fits[n];
     double log_evidence = -fit.residual_v2 / (2.0 * s2) + 0.5 * static_cast<double>(n) * std::log(2.0 * PI) +
                           std::lgamma(static_cast<double>(n) + 1.0);
     for (double k : fit.stiffness_n_per_m) log_evidence += density(k);
-    if (n > 0) {
+    if (n > 0 && fit.normal_matrix.rows() == static_cast<Eigen::Index>(n)) {
       Eigen::MatrixXd h = fit.normal_matrix / s2;
       h.diagonal().array() += 1.0 / (spread * spread);
       // ln det by Cholesky (H is symmetric positive definite).

@@ -8,7 +8,9 @@
 //! every ln k_i (Levenberg 1944, Marquardt 1963; Nocedal & Wright, Numerical Optimization,
 //! 2nd ed., §10.3). Two asperities too close to tell apart add up to twice an atom, which
 //! no single atom explains: the count stays identifiable where frequency resolution is
-//! lost, and the greedy step adds the second one.
+//! lost, and the greedy step adds the second one. Along the greedy path only the new atom and
+//! its neighbours (within 8 line widths) are refitted; the orders the posterior weighs (the
+//! greedy count -1 .. +extra) are then refitted in full.
 #include <Eigen/Dense>
 #include <span>
 #include <vector>
@@ -22,7 +24,9 @@ namespace stengmc {
 struct OrderFit {
   std::vector<double> stiffness_n_per_m;  //!< ascending [N/m]
   double residual_v2 = 0.0;               //!< sum of squared residuals [V^2]
-  Eigen::MatrixXd normal_matrix;          //!< J^T J of the fit in ln k, same order [V^2]
+  //! J^T J of the fit in ln k, same order [V^2]; empty for orders fitted only along the greedy
+  //! path (far from the count the search settled on: their evidence is negligible)
+  Eigen::MatrixXd normal_matrix;
   std::size_t iterations = 0;             //!< Levenberg–Marquardt iterations of the last refinement
 };
 
@@ -41,8 +45,10 @@ class LineSearch {
   LineSearch(const RecordModel& model, LineProposals& proposals, std::span<const double> record,
              const LineSearchOptions& options = {});
 
-  //! Levenberg–Marquardt fit of the ln k_i from `k` [N/m].
-  OrderFit refine(std::vector<double> k);
+  //! Levenberg–Marquardt fit of the ln k_i from `k` [N/m]: all of them, or only those
+  //! `active` marks (the others stay where they are). With `normal_matrix`, the fit's J^T J
+  //! over all atoms is computed at the end.
+  OrderFit refine(std::vector<double> k, const std::vector<bool>& active = {}, bool normal_matrix = true);
 
   //! Fits for n = 0 (no atom) along the greedy path to its stop, then `extra_orders` more,
   //! never beyond `max_count`: index n of the result holds the fit with n atoms.
@@ -56,6 +62,8 @@ class LineSearch {
   double exact_score(double k, std::span<const double> residual) const;
   LineCandidate best_addition(std::span<const double> residual);
   double residual_norm(std::span<const double> k, Eigen::MatrixXd* jacobian, std::vector<double>& r) const;
+  //! Atoms within this many line widths of a new one are refitted with it on the greedy path.
+  static constexpr double NEIGHBOURHOOD_WIDTHS = 8.0;
 
   const RecordModel* model_;
   LineProposals* proposals_;

@@ -59,7 +59,10 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   if (out.posterior.counts.empty())
     throw Error("RecordEstimator: no fit within the prior's count range (the search stopped early)");
   out.count = out.posterior.best;
-  const OrderFit& best = fits[out.count];
+  // The chosen order is normally among those refitted in full; if not, refit it now.
+  const OrderFit best = fits[out.count].normal_matrix.rows() == static_cast<Eigen::Index>(out.count)
+                            ? fits[out.count]
+                            : search.refine(fits[out.count].stiffness_n_per_m);
   out.residual_sigma_v = std::sqrt(best.residual_v2 / static_cast<double>(samples - out.count));
   if (out.count + 1 < fits.size() && out.count == prior_.count_max) {
     const double gain = best.residual_v2 - fits[out.count + 1].residual_v2;

@@ -23,9 +23,23 @@
 
 namespace stengmc {
 
+//! The sums over atoms the coupling terms need (sum V_i, sum V_i^2, sum V_i', sum C_i V_i',
+//! sum C_i), so a fit can keep the atoms it does not move summed once.
+struct AtomSums {
+  std::vector<double> value, squares, slope, weighted_slope, capacitance;
+  //! Zeros for `samples` samples.
+  void reset(std::size_t samples);
+};
+
 class RecordModel {
  public:
   explicit RecordModel(const AtomTable& atoms);
+
+  //! Adds atom k [N/m] to `sums`; with `d_dlnk` (one value per sample) also its dV/d ln k.
+  //! Not thread-safe (scratch buffers): one model per thread.
+  void add(double k, AtomSums& sums, std::span<double> d_dlnk = {}) const;
+  //! The model voltage of the atoms in `sums`, coupling included [V].
+  void voltage(const AtomSums& sums, std::span<double> out) const;
 
   //! The model voltage for stiffnesses `k` [N/m] on the table's grid, into `voltage` [V].
   //! With `jacobian` (samples x n), also dV/d ln k_i, column i: the atoms' own derivatives
@@ -37,6 +51,7 @@ class RecordModel {
   [[nodiscard]] std::size_t samples() const { return atoms_->grid().samples; }
 
  private:
+  mutable std::vector<double> atom_, slope_;  // scratch of add()
   const AtomTable* atoms_;
   double gamma_per_v_ = 0.0;   // eps0 / (sigma d0)
 };
