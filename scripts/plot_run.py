@@ -5,7 +5,8 @@
     plot_run.py --compare A.h5 B.h5 --out F.png   voltages of several runs on one axis
 
 `stengmc surface` files (file_type "stengmc-surface") go to plot_surface.py, ensemble
-files (file_type "stengmc-ensemble") to plot_ensemble.py.
+files (file_type "stengmc-ensemble") to plot_ensemble.py, `stengmc invert` files
+(file_type "stengmc-inverse") to plot_inverse.py.
 
 Reads only the file layout documented in the README; run with Debian's python3
 (python3-h5py, python3-matplotlib).
@@ -25,6 +26,7 @@ from stengmc_h5 import attribute  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_ensemble  # noqa: E402  (beside this script)
+import plot_inverse  # noqa: E402  (beside this script)
 import plot_surface  # noqa: E402  (beside this script)
 
 SUPPORTED_FORMAT = 1
@@ -61,6 +63,9 @@ def plot_run(path):
         return
     if kind == plot_ensemble.FILE_TYPE:
         plot_ensemble.plot_ensemble(path)
+        return
+    if kind == plot_inverse.FILE_TYPE:
+        plot_inverse.plot_inverse(path)
         return
     f = open_checked(path)
     if "time" not in f:  # a `stengmc spectrum` output: spectra only

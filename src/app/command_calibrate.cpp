@@ -18,6 +18,7 @@ struct CalibrateOptions {
   int threads = 0;
   bool restart = false;
   long long records = 0;  // 0: the study's [inverse] calibration_records
+  bool refit = false;     // refit the maps of an existing bank from its records
 };
 
 //! In-bank figures by bin of the true count: what the estimator did on the records it was
@@ -66,10 +67,22 @@ void run(const CalibrateOptions& options) {
   std::printf("  prior: %zu-%zu sliding asperities, %s stiffnesses, SNR %g-%g dB; records of %zu samples at %g Hz\n",
               setup.prior.count_min, setup.prior.count_max, std::string(stiffness_family_name(setup.prior.family)).c_str(),
               setup.prior.snr_db[0], setup.prior.snr_db[1], setup.grid.samples, setup.grid.sample_rate_hz());
-  std::printf("  building the atoms (the forward model on a grid of stiffnesses)...\n");
+  if (!options.refit) std::printf("  building the atoms (the forward model on a grid of stiffnesses)...\n");
   std::fflush(stdout);
   const std::string journal = out + ".journal";
-  const CalibrationBank bank = run_calibration(study, journal, calibration);
+  CalibrationBank bank;
+  if (options.refit) {
+    // The records stay, the maps are fitted afresh: only for a bank of this very setup.
+    bank = read_calibration_bank_records(out, setup);
+    const std::string differences = bank_identity_of(out).differences(setup.identity);
+    if (!differences.empty())
+      throw InputError("--refit: " + out + " was made for something else: " + differences + "; make it afresh without --refit");
+    bank.setup.prior.calibration_records = bank.samples.size();
+    bank.maps = fit_calibration_maps(bank.samples, bank.setup.prior);
+    std::printf("  refitted the maps on the bank's %zu records (no new simulation)\n", bank.samples.size());
+  } else {
+    bank = run_calibration(study, journal, calibration);
+  }
   if (const auto folder = std::filesystem::path(out).parent_path(); !folder.empty()) std::filesystem::create_directories(folder);
   write_calibration_bank(out, bank);
   std::filesystem::remove(journal);
@@ -81,7 +94,7 @@ void run(const CalibrateOptions& options) {
               invalid, bank.resumed ? (", " + std::to_string(bank.resumed) + " resumed from the journal").c_str() : "");
   std::printf("On the bank's own records (in-sample; the naive FFT count at its best threshold, %g x the local floor):\n%s",
               bank.maps.naive_threshold, bank_table(bank).c_str());
-  if (bank.resumed == 0 && bank.maps.records > 0) {
+  if (!options.refit && bank.resumed == 0 && bank.maps.records > 0) {
     const double per_record = bank.cpu_seconds / static_cast<double>(bank.samples.size());
     const double estimation = bank.estimation_cpu_seconds / static_cast<double>(bank.samples.size());
     std::printf("Time: %.1f s wall on %d threads (atoms %.1f s); per record %.0f ms CPU: estimation %.0f ms, forward "
@@ -106,6 +119,8 @@ void add_calibrate_command(CLI::App& app) {
   command->add_flag("--restart", options->restart, "Discard an interrupted calibration's journal instead of resuming it");
   command->add_option("--records", options->records, "Simulated records (default: [inverse] calibration_records)")
       ->check(CLI::Range(50LL, 1000000LL));
+  command->add_flag("--refit", options->refit,
+                    "Refit the maps of the existing bank (--out) from its records, without simulating again");
   command->callback([options] { run(*options); });
 }
 

@@ -13,7 +13,8 @@ namespace {
 constexpr int MAX_OFFSET = 3;                 // confusion offsets n - n-hat considered
 constexpr double JEFFREYS = 0.5;
 constexpr std::size_t CONFUSION_RECORDS = 60;  // pooled until this many
-constexpr std::size_t CONFORMAL_RECORDS = 100;
+// Scale floors: below the record model's own accuracy a standard error means nothing.
+constexpr double SCALE_FLOOR = 1e-4;
 constexpr double Z90 = 1.6448536269514722;
 
 //! The split-conformal quantile: the ceil(level (N + 1))-th smallest score (the largest when
@@ -41,6 +42,34 @@ std::vector<const CalibrationSample*> neighbourhood(const std::vector<Calibratio
 }
 
 }  // namespace
+
+double median_log_scale(std::vector<double> k, std::vector<double> se) {
+  const std::size_t n = k.size();
+  if (n == 0) return SCALE_FLOOR;
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return k[a] < k[b]; });
+  const double s = n % 2 ? se[order[n / 2]] : 0.5 * std::hypot(se[order[n / 2 - 1]], se[order[n / 2]]);
+  return std::max(SCALE_FLOOR, s);
+}
+
+double sd_log_scale(const std::vector<double>& k, const std::vector<double>& se) {
+  const std::size_t n = k.size();
+  if (n < 2) return 0.0;
+  double mean = 0.0;
+  for (double x : k) mean += std::log(x) / static_cast<double>(n);
+  double var = 0.0;
+  for (double x : k) var += (std::log(x) - mean) * (std::log(x) - mean) / static_cast<double>(n - 1);
+  const double sd = std::sqrt(var);
+  if (!(sd > 0.0)) return SCALE_FLOOR;
+  // d sd / d ln k_i = (ln k_i - mean) / ((n - 1) sd)
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double g = (std::log(k[i]) - mean) / (static_cast<double>(n - 1) * sd);
+    sum += g * g * se[i] * se[i];
+  }
+  return std::max(SCALE_FLOOR, std::sqrt(sum));
+}
 
 CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& samples, const InversePrior& prior) {
   CalibrationMaps maps;
@@ -71,19 +100,28 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
     for (double& p : maps.confusion[mi]) p /= total;
   }
 
-  // Population intervals, Mondrian by n-hat.
-  maps.median_log_half_width.assign(counts, 0.0);
-  maps.sd_log_half_width.assign(counts, 0.0);
-  for (std::size_t mi = 0; mi < counts; ++mi) {
-    const std::size_t m = prior.count_min + mi;
-    std::vector<double> median_scores, sd_scores;
-    for (const CalibrationSample* s : neighbourhood(samples, m, CONFORMAL_RECORDS, [](const CalibrationSample& x) { return x.count > 0; }))
-      median_scores.push_back(std::abs(std::log(s->median / s->true_median())));
-    for (const CalibrationSample* s : neighbourhood(samples, m, CONFORMAL_RECORDS,
-                                                    [](const CalibrationSample& x) { return x.count >= 2 && x.true_count() >= 2; }))
-      sd_scores.push_back(std::abs(s->sd_log - s->true_sd_log()));
-    maps.median_log_half_width[mi] = conformal_quantile(median_scores, INTERVAL_LEVEL);
-    maps.sd_log_half_width[mi] = conformal_quantile(sd_scores, INTERVAL_LEVEL);
+  // Population intervals: normalised scores, Mondrian by bins of n-hat.
+  const std::size_t bins = (counts + POPULATION_BIN_COUNTS - 1) / POPULATION_BIN_COUNTS;
+  maps.median_score_quantile.assign(bins, 0.0);
+  maps.sd_score_quantile.assign(bins, 0.0);
+  for (std::size_t b = 0; b < bins; ++b) {
+    const std::size_t first = prior.count_min + b * POPULATION_BIN_COUNTS, last = first + POPULATION_BIN_COUNTS - 1;
+    std::vector<double> median_scores, sd_scores, all_median, all_sd;
+    for (const CalibrationSample& s : samples) {
+      if (!s.valid || s.count == 0) continue;
+      const bool in_bin = s.count >= first && s.count <= last;
+      const double m = std::abs(std::log(s.median / s.true_median())) / median_log_scale(s.stiffness, s.log_stiffness_se);
+      all_median.push_back(m);
+      if (in_bin) median_scores.push_back(m);
+      if (s.count >= 2 && s.true_count() >= 2) {
+        const double d = std::abs(s.sd_log - s.true_sd_log()) / sd_log_scale(s.stiffness, s.log_stiffness_se);
+        all_sd.push_back(d);
+        if (in_bin) sd_scores.push_back(d);
+      }
+    }
+    constexpr std::size_t FEWEST = 20;
+    maps.median_score_quantile[b] = conformal_quantile(median_scores.size() >= FEWEST ? median_scores : all_median, INTERVAL_LEVEL);
+    maps.sd_score_quantile[b] = conformal_quantile(sd_scores.size() >= FEWEST ? sd_scores : all_sd, INTERVAL_LEVEL);
   }
 
   // Line errors: records counted exactly, lines paired in order (the optimal matching for
@@ -171,11 +209,13 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
     out.line_high.push_back(line.stiffness_n_per_m * std::exp(Z90 * scale * line.log_stiffness_se));
   }
   if (maps && e.count >= prior.count_min && e.count <= prior.count_max) {
-    const std::size_t mi = e.count - prior.count_min;
-    const double h = maps->median_log_half_width[mi];
+    const std::size_t bin = (e.count - prior.count_min) / POPULATION_BIN_COUNTS;
+    std::vector<double> k, se;
+    for (const EstimatedLine& line : e.lines) k.push_back(line.stiffness_n_per_m), se.push_back(line.log_stiffness_se);
+    const double h = maps->median_score_quantile[bin] * median_log_scale(k, se);
     out.median_low = out.median * std::exp(-h);
     out.median_high = out.median * std::exp(h);
-    const double hs = maps->sd_log_half_width[mi];
+    const double hs = maps->sd_score_quantile[bin] * sd_log_scale(k, se);
     out.sd_log_low = std::max(0.0, out.sd_log - hs);
     out.sd_log_high = out.sd_log + hs;
     out.population_intervals = true;

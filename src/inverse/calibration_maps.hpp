@@ -8,12 +8,15 @@
 //!   P(n | y) = sum_m P_raw(m | y) P(n | m): the raw posterior's doubts, when it has any, are
 //!   carried through the empirical confusion. The 90 % interval is the shortest run of
 //!   counts around the mode holding >= 0.9.
-//! - The median and sd(ln k) of the sliding asperities: split-conformal intervals (Vovk,
-//!   Gammerman & Shafer 2005; Lei, G'Sell, Rinaldo, Tibshirani & Wasserman 2018, "Distribution-
-//!   free predictive inference for regression", JASA 113, 1094), Mondrian by n-hat (pooled
-//!   over neighbouring n-hat until >= 100 records): the ceil(0.9 (N + 1))-th smallest bank
-//!   score |ln median-hat - ln median| (|sd-hat - sd|) is the half-width, which covers a new
-//!   record of the prior with probability >= 0.9 (exchangeability).
+//! - The median and sd(ln k) of the sliding asperities: split-conformal intervals with
+//!   normalised scores (Vovk, Gammerman & Shafer 2005; Lei, G'Sell, Rinaldo, Tibshirani &
+//!   Wasserman 2018, "Distribution-free predictive inference for regression", JASA 113, 1094,
+//!   §5.2 "locally weighted"), Mondrian by bins of 4 counts of n-hat (Vovk et al. §4.5): in
+//!   each bin the ceil(0.9 (N + 1))-th smallest bank score |ln median-hat - ln median| / s
+//!   (|sd-hat - sd| / s), with s the estimate's own standard error from its lines' errors, is
+//!   q; the interval +-q s covers a new record of the prior whose n-hat falls in that bin with
+//!   probability >= 0.9 (exchangeability within the bin). Bins with fewer than 20 bank
+//!   records take all records.
 //! - Each line: its Gauss–Newton standard error, scaled so 90 % of the bank's lines (records
 //!   counted exactly, lines paired in order of k) lie within +-1.645 scaled errors.
 //! - The naive FFT count: the prominence threshold whose count has the smallest RMSE.
@@ -32,9 +35,10 @@ struct CalibrationMaps {
   std::size_t count_min = 1, count_max = 16;
   //! confusion[m - count_min][n - count_min] = P(n | n-hat = m)
   std::vector<std::vector<double>> confusion;
-  //! per n-hat (index m - count_min): conformal half-widths of ln median and of sd(ln k)
-  std::vector<double> median_log_half_width;
-  std::vector<double> sd_log_half_width;
+  //! per bin of n-hat (bin j: count_min + 4j .. count_min + 4j + 3): conformal quantiles of
+  //! the normalised scores of ln median and of sd(ln k)
+  std::vector<double> median_score_quantile;
+  std::vector<double> sd_score_quantile;
   double line_error_scale = 1.0;        //!< standard errors x this: 90 % of bank lines within 1.645
   std::size_t naive_threshold_index = 0;
   double naive_threshold = 0.0;         //!< x the local noise floor
@@ -45,6 +49,16 @@ struct CalibrationMaps {
 };
 
 CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& samples, const InversePrior& prior);
+
+//! Counts of n-hat per bin of the population intervals.
+inline constexpr std::size_t POPULATION_BIN_COUNTS = 4;
+
+//! Standard error of ln(median k) from the lines' standard errors in ln k (the middle line's,
+//! or half the root-sum-square of the middle two), floored at 1e-4.
+double median_log_scale(std::vector<double> stiffness, std::vector<double> log_stiffness_se);
+//! Standard error of the sample sd of ln k by first-order propagation of the lines' errors,
+//! floored at 1e-4 (0 below two lines).
+double sd_log_scale(const std::vector<double>& stiffness, const std::vector<double>& log_stiffness_se);
 
 struct CalibratedEstimate {
   bool calibrated = false;                //!< false: no bank (raw posterior, no population intervals)

@@ -9,6 +9,34 @@
 namespace stengmc {
 
 double CalibrationSample::true_median() const { return sample_median(true_stiffness); }
+
+RecordEstimate CalibrationSample::raw_estimate() const {
+  RecordEstimate e;
+  e.count = count;
+  const double top = log_evidence.empty() ? 0.0 : *std::max_element(log_evidence.begin(), log_evidence.end());
+  double total = 0.0;
+  for (double l : log_evidence) total += std::exp(l - top);
+  for (std::size_t j = 0; j < counts.size(); ++j) {
+    e.posterior.counts.push_back(static_cast<std::size_t>(counts[j]));
+    e.posterior.log_evidence.push_back(log_evidence[j]);
+    e.posterior.probability.push_back(std::exp(log_evidence[j] - top) / total);
+  }
+  e.posterior.best = count;
+  for (std::size_t i = 0; i < stiffness.size(); ++i) {
+    EstimatedLine line;
+    line.stiffness_n_per_m = stiffness[i];
+    line.log_stiffness_se = log_stiffness_se[i];
+    e.lines.push_back(line);
+  }
+  e.median_stiffness_n_per_m = median;
+  e.sd_log_stiffness = sd_log;
+  e.noise.sigma_v = noise_sigma_v;
+  e.residual_sigma_v = residual_sigma_v;
+  e.in_band_power_ratio = band_power_ratio;
+  e.signal_to_noise_db = snr_estimate_db;
+  e.seconds = seconds;
+  return e;
+}
 double CalibrationSample::true_sd_log() const { return sample_sd_log(true_stiffness); }
 
 void store_estimate(RealisationRecord& record, const RecordEstimate& e, const std::vector<double>& naive_counts) {

@@ -29,6 +29,9 @@ struct CalibrationSample {
   [[nodiscard]] std::size_t true_count() const { return true_stiffness.size(); }
   [[nodiscard]] double true_median() const;
   [[nodiscard]] double true_sd_log() const;   //!< n - 1 denominator; 0 below 2
+  //! The raw estimate as far as the sample keeps it (posterior, count, lines, population):
+  //! what calibrate_estimate needs, so held-out samples can be calibrated like a record.
+  [[nodiscard]] RecordEstimate raw_estimate() const;
 };
 
 //! Stores the estimate and the naive counts in `record`'s extras.

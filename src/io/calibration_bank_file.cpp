@@ -141,8 +141,8 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
 
   const CalibrationMaps& m = bank.maps;
   f.write("/maps/confusion", m.confusion, "1");
-  f.write("/maps/median_log_half_width", m.median_log_half_width, "1");
-  f.write("/maps/sd_log_half_width", m.sd_log_half_width, "1");
+  f.write("/maps/median_score_quantile", m.median_score_quantile, "1");
+  f.write("/maps/sd_score_quantile", m.sd_score_quantile, "1");
   f.write("/maps/naive_thresholds", naive_count_thresholds(), "x local noise floor");
   f.attribute("/maps", "count_min", static_cast<std::int64_t>(m.count_min));
   f.attribute("/maps", "count_max", static_cast<std::int64_t>(m.count_max));
@@ -158,8 +158,10 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
   f.commit();
 }
 
-StoredBank read_calibration_bank(const std::string& path) {
-  Hdf5Reader f(path);
+namespace {
+
+//! A bank's identity and atoms (everything but the maps), after checking the file type.
+StoredBank read_identity_and_atoms(const std::string& path, const Hdf5Reader& f) {
   const std::string type = f.string_attribute("/", "file_type");
   if (type != FILE_TYPE)
     throw InputError(path + ": not a calibration bank (file_type \"" + type + "\"; make one with stengmc calibrate)");
@@ -197,11 +199,23 @@ StoredBank read_calibration_bank(const std::string& path) {
   a.settings.head_after_breakaway_s = number("/atoms", "head_after_breakaway_s");
   a.settings.blend_s = number("/atoms", "blend_s");
   a.settings.checks = static_cast<std::size_t>(number("/atoms", "checks"));
+  return bank;
+}
 
+}  // namespace
+
+StoredBank read_calibration_bank(const std::string& path) {
+  Hdf5Reader f(path);
+  StoredBank bank = read_identity_and_atoms(path, f);
+  auto number = [&](const std::string& object, const std::string& name) {
+    const auto v = f.number_attribute(object, name);
+    if (!v) throw InputError(path + ": attribute " + object + "@" + name + " is missing (a damaged bank?)");
+    return *v;
+  };
   CalibrationMaps& m = bank.maps;
   m.confusion = f.matrix("/maps/confusion");
-  m.median_log_half_width = f.vector("/maps/median_log_half_width");
-  m.sd_log_half_width = f.vector("/maps/sd_log_half_width");
+  m.median_score_quantile = f.vector("/maps/median_score_quantile");
+  m.sd_score_quantile = f.vector("/maps/sd_score_quantile");
   m.count_min = static_cast<std::size_t>(number("/maps", "count_min"));
   m.count_max = static_cast<std::size_t>(number("/maps", "count_max"));
   m.line_error_scale = number("/maps", "line_error_scale");
@@ -213,8 +227,71 @@ StoredBank read_calibration_bank(const std::string& path) {
   m.bank_naive_rmse = number("/maps", "bank_naive_rmse");
   m.bank_naive_exact_rate = number("/maps", "bank_naive_exact_rate");
   const std::size_t counts = m.count_max - m.count_min + 1;
-  if (m.confusion.size() != counts || m.median_log_half_width.size() != counts || m.sd_log_half_width.size() != counts)
+  const std::size_t bins = (counts + POPULATION_BIN_COUNTS - 1) / POPULATION_BIN_COUNTS;
+  if (m.confusion.size() != counts || m.median_score_quantile.size() != bins || m.sd_score_quantile.size() != bins)
     throw InputError(path + ": the bank's maps do not match its count range (a damaged bank?)");
+  return bank;
+}
+
+BankIdentity bank_identity_of(const std::string& path) {
+  Hdf5Reader f(path);
+  return read_identity_and_atoms(path, f).identity;
+}
+
+CalibrationBank read_calibration_bank_records(const std::string& path, const InverseSetup& setup) {
+  Hdf5Reader f(path);
+  const StoredBank stored = read_identity_and_atoms(path, f);
+  CalibrationBank bank;
+  bank.setup = setup;
+  bank.device_study_file = f.string_attribute("/", "input_file");
+  bank.device_study_text = f.string_attribute("/", "input_text");
+  bank.prior_study_text = f.string_attribute("/", "prior_study_text");
+  bank.atoms = stored.atoms;
+  bank.threads = static_cast<int>(f.integer_attribute("/", "threads").value_or(1));
+  bank.seconds = f.number_attribute("/", "seconds").value_or(0.0);
+  bank.atom_seconds = f.number_attribute("/", "atom_seconds").value_or(0.0);
+  const auto ids = f.vector("/records/realisation");
+  const auto valid = f.vector("/records/valid");
+  const auto count = f.vector("/records/count");
+  const auto snr = f.vector("/records/snr_db");
+  const auto first = f.vector("/records/law_first"), second = f.vector("/records/law_second");
+  const auto median = f.vector("/records/median"), sd = f.vector("/records/sd_log");
+  const auto noise = f.vector("/records/noise_sigma"), residual = f.vector("/records/residual_sigma");
+  const auto band = f.vector("/records/band_power_ratio"), snr_estimate = f.vector("/records/snr_estimate_db");
+  const auto seconds = f.vector("/records/seconds");
+  const auto naive = f.matrix("/records/naive_counts");
+  const auto true_k = f.vector("/records/true_stiffness"), true_offset = f.vector("/records/true_offset");
+  const auto k = f.vector("/records/stiffness"), se = f.vector("/records/log_stiffness_se");
+  const auto estimate_offset = f.vector("/records/estimate_offset");
+  const auto orders = f.vector("/records/orders"), evidence = f.vector("/records/log_evidence");
+  const auto order_offset = f.vector("/records/order_offset");
+  auto slice = [](const std::vector<double>& v, const std::vector<double>& offset, std::size_t j) {
+    return std::vector<double>(v.begin() + static_cast<std::ptrdiff_t>(offset[j]), v.begin() + static_cast<std::ptrdiff_t>(offset[j + 1]));
+  };
+  for (std::size_t j = 0; j < ids.size(); ++j) {
+    CalibrationSample s;
+    s.realisation = static_cast<std::uint64_t>(ids[j]);
+    s.valid = valid[j] != 0.0;
+    s.snr_db = snr[j];
+    s.law_first = first[j];
+    s.law_second = second[j];
+    s.true_stiffness = slice(true_k, true_offset, j);
+    s.count = static_cast<std::size_t>(count[j]);
+    s.stiffness = slice(k, estimate_offset, j);
+    s.log_stiffness_se = slice(se, estimate_offset, j);
+    s.counts = slice(orders, order_offset, j);
+    s.log_evidence = slice(evidence, order_offset, j);
+    s.median = median[j];
+    s.sd_log = sd[j];
+    s.noise_sigma_v = noise[j];
+    s.residual_sigma_v = residual[j];
+    s.band_power_ratio = band[j];
+    s.snr_estimate_db = snr_estimate[j];
+    s.seconds = seconds[j];
+    s.naive_counts = naive[j];
+    bank.estimation_cpu_seconds += s.seconds;
+    bank.samples.push_back(std::move(s));
+  }
   return bank;
 }
 

@@ -9,8 +9,8 @@
 //!   /atoms/          the atom table (AtomTableData): heads, head_slopes (head points x
 //!                    samples), tail_shift_s, tail_phase_rad, tail_fit_error; attributes
 //!                    min/max_stiffness_n_per_m, head_samples, check_error and its settings
-//!   /maps/           confusion (counts x counts, row n-hat, column true n), median_log_half_width,
-//!                    sd_log_half_width (per n-hat), naive_thresholds; attributes count_min,
+//!   /maps/           confusion (counts x counts, row n-hat, column true n), median_score_quantile,
+//!                    sd_score_quantile (per bin of 4 counts of n-hat), naive_thresholds; attributes count_min,
 //!                    count_max, line_error_scale, naive_threshold, records and the bank's own figures
 //!   /records/        one entry per simulated record: truth, raw estimate, naive counts;
 //!                    flat k lists with offsets (true_stiffness / true_offset, stiffness,
@@ -35,5 +35,12 @@ struct StoredBank {
 
 //! @throws InputError when the file is not a stengmc calibration bank (or a newer format).
 StoredBank read_calibration_bank(const std::string& path);
+
+//! What a bank was made from (its identity alone).
+BankIdentity bank_identity_of(const std::string& path);
+
+//! The whole bank back, records included, for refitting its maps without simulating again
+//! (`stengmc calibrate --refit`): `setup` must be the one the bank was made for.
+CalibrationBank read_calibration_bank_records(const std::string& path, const InverseSetup& setup);
 
 }  // namespace stengmc

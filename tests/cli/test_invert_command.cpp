@@ -1,0 +1,210 @@
+// `stengmc calibrate` and `stengmc invert` through the real command line: rejected inputs
+// (exit 2, a message naming the problem, no output file), a bank refused for other known
+// parameters, a calibration bitwise the same on 1 and 2 threads, and a record inverted end
+// to end with its figure.
+#include <gtest/gtest.h>
+
+#include <boost/random/normal_distribution.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "core/random_stream.hpp"
+#include "inverse/calibration_run.hpp"
+#include "inverse/simulated_record.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/study.hpp"
+#include "support/cli_runner.hpp"
+
+namespace stengmc {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDir;
+
+// A small known device: 20 us records at 100 MHz, a prior of 1-3 asperities with
+// stiffnesses around 60-90 N/m, so a bank of 50 records takes seconds.
+std::string device_study(const std::string& replace_from = "", const std::string& replace_to = "") {
+  std::string text = R"(duration_s = 20e-6
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+static_friction = 0.28
+kinetic_friction = 0.22
+damping_n_s_per_m = 1e-7
+stribeck_decay_s_per_m = 1e-7
+atan_sharpness_s_per_m = 1e3
+friction_form = "consistent"
+[circuit]
+load_resistance_ohm = 1e6
+load_capacitance_f = 0
+[surface.defaults]
+mass_kg = 1e-12
+normal_load_n = 1e-3
+charge_density_c_per_m2 = 80e-6
+effective_thickness_m = 50e-6
+width_m = 10e-6
+length_m = 50e-6
+[[surface.asperity]]
+stiffness_n_per_m = 75
+[inverse]
+count = [1, 3]
+median_n_per_m = [60, 90]
+sigma_log = [0.1, 0.2]
+snr_db = [25, 35]
+calibration_records = 50
+seed = 5
+)";
+  if (!replace_from.empty()) {
+    const auto at = text.find(replace_from);
+    EXPECT_NE(at, std::string::npos) << replace_from;
+    text.replace(at, replace_from.size(), replace_to);
+  }
+  return text;
+}
+
+//! A CSV `t,V` of `samples` samples: times from `time(m)`, values from `value(m)`.
+template <typename T, typename F>
+std::string csv_with(std::size_t samples, T time, F value) {
+  std::string out = "t,V\n";
+  char line[96];
+  for (std::size_t m = 0; m < samples; ++m) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g\n", time(m), value(m));
+    out += line;
+  }
+  return out;
+}
+
+//! The same on the uniform grid m / rate.
+template <typename F>
+std::string csv(std::size_t samples, double rate, F value) {
+  return csv_with(samples, [rate](std::size_t m) { return static_cast<double>(m) / rate; }, value);
+}
+
+//! A noisy record of the small device with asperities of stiffness `k`.
+std::string simulated_csv(const std::vector<double>& k) {
+  const Study study = parse_study(device_study(), "device.toml", std::nullopt);
+  const InverseSetup setup = inverse_setup(study);
+  std::vector<double> v = simulate_record(setup.device, k, setup.grid);
+  RandomEngine engine = random_stream(3, 0, StreamKind::noise);
+  boost::random::normal_distribution<double> noise(0.0, 1e-4);
+  for (double& x : v) x += noise(engine);
+  return csv(v.size(), 100e6, [&](std::size_t m) { return v[m]; });
+}
+
+class InvertCommand : public ::testing::Test {
+ protected:
+  // One bank for the suite (it takes a few seconds).
+  static void SetUpTestSuite() {
+    scratch_ = new ScratchDir("invert-suite");
+    scratch_->write("device.toml", device_study());
+    const auto r = run_cli("calibrate " + scratch_->file("device.toml") + " -o " + scratch_->file("bank.h5") + " -j 2", *scratch_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  static void TearDownTestSuite() {
+    delete scratch_;
+    scratch_ = nullptr;
+  }
+  static ScratchDir* scratch_;
+
+  //! Runs invert on `signal_text` (a CSV) with the suite's device; expects a refusal with
+  //! exit code 2 whose message holds `expected`, and no output file.
+  void expect_refused(const std::string& signal_text, const std::string& expected, const std::string& study = device_study()) {
+    ScratchDir scratch("invert-bad");
+    const std::string signal = scratch.write("signal.csv", signal_text);
+    const std::string known = scratch.write("known.toml", study);
+    const std::string out = scratch.file("out.h5");
+    const auto r = run_cli("invert " + signal + " --known " + known + " --out " + out, scratch);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+};
+ScratchDir* InvertCommand::scratch_ = nullptr;
+
+const double RATE = 100e6;
+double zero(std::size_t) { return 0.0; }
+
+TEST_F(InvertCommand, RejectsNonUniformTimes) {
+  // Sample 101 moved by 0.3 steps.
+  auto time = [](std::size_t m) { return (static_cast<double>(m) + (m == 100 ? 0.3 : 0.0)) / RATE; };
+  expect_refused(csv_with(2001, time, zero), "not uniform");
+}
+
+TEST_F(InvertCommand, RejectsDuplicatedTimes) {
+  // Sample 101 repeats sample 100's time.
+  auto time = [](std::size_t m) { return static_cast<double>(m == 100 ? 99 : m) / RATE; };
+  expect_refused(csv_with(2001, time, zero), "repeats the time of sample 100");
+}
+
+TEST_F(InvertCommand, RejectsNanAndInf) {
+  expect_refused(csv(2001, RATE, [](std::size_t m) { return m == 77 ? std::nan("") : 0.0; }), "is not two finite numbers");
+  expect_refused(csv(2001, RATE, [](std::size_t m) { return m == 77 ? INFINITY : 0.0; }), "is not two finite numbers");
+}
+
+TEST_F(InvertCommand, RejectsTooFewSamples) { expect_refused(csv(63, RATE, zero), "at least 64"); }
+
+TEST_F(InvertCommand, RejectsASampleRateTooLowForThePriorsHighestLine) {
+  // The prior's highest line is ~1.9 MHz (k ~ 140 N/m); 3 MHz sampling has its Nyquist
+  // frequency below 1.25 x that.
+  expect_refused(csv(200, 3e6, zero), "too low for the prior's highest line");
+}
+
+TEST_F(InvertCommand, RejectsAStudyMissingAKnownParameter) {
+  expect_refused(csv(2001, RATE, zero), "missing model.belt_velocity_m_per_s", device_study("belt_velocity_m_per_s = 10\n", ""));
+  expect_refused(csv(2001, RATE, zero), "surface.defaults.normal_load_n", device_study("normal_load_n = 1e-3\n", ""));
+}
+
+TEST_F(InvertCommand, RefusesABankMadeForOtherKnownParameters) {
+  ScratchDir scratch("invert-other-bank");
+  const std::string signal = scratch.write("signal.csv", simulated_csv({70.0}));
+  const std::string known = scratch.write("known.toml", device_study("normal_load_n = 1e-3", "normal_load_n = 1.1e-3"));
+  const std::string out = scratch.file("out.h5");
+  const auto r = run_cli("invert " + signal + " --known " + known + " --bank " + scratch_->file("bank.h5") + " --out " + out, scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("was made for other known parameters"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("normal_load_n = 0.001"), std::string::npos) << "the message should say what differs:\n" << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST_F(InvertCommand, CalibrationIsTheSameOnOneAndTwoThreads) {
+  ScratchDir scratch("invert-threads");
+  const auto r = run_cli("calibrate " + scratch_->file("device.toml") + " -o " + scratch.file("bank1.h5") + " -j 1", scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Hdf5Reader one(scratch.file("bank1.h5")), two(scratch_->file("bank.h5"));
+  // Everything but the estimator's CPU times, bitwise.
+  for (const char* name : {"/records/count", "/records/true_count", "/records/stiffness", "/records/log_stiffness_se",
+                           "/records/log_evidence", "/records/median", "/records/sd_log", "/records/naive_counts",
+                           "/records/noise_sigma", "/maps/confusion", "/maps/median_score_quantile",
+                           "/maps/sd_score_quantile", "/atoms/heads", "/atoms/tail_phase_rad"}) {
+    const std::string path = name;
+    if (path == "/records/naive_counts" || path == "/maps/confusion" || path == "/atoms/heads")
+      EXPECT_EQ(one.matrix(path), two.matrix(path)) << path;
+    else
+      EXPECT_EQ(one.vector(path), two.vector(path)) << path;
+  }
+}
+
+TEST_F(InvertCommand, InvertsARecordAndDrawsItsFigure) {
+  ScratchDir scratch("invert-roundtrip");
+  const std::string signal = scratch.write("signal.csv", simulated_csv({55.0, 85.0}));
+  const std::string out = scratch.file("out.h5");
+  const auto r = run_cli("invert " + signal + " --known " + scratch_->file("device.toml") + " --bank " + scratch_->file("bank.h5") +
+                             " --out " + out + " --figures",
+                         scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Hdf5Reader file(out);
+  EXPECT_EQ(file.vector("/inverse/count/estimate"), std::vector<double>{2.0});
+  const std::vector<double> k = file.vector("/inverse/lines/stiffness_n_per_m");
+  ASSERT_EQ(k.size(), 2u);
+  // 1e-4 V of noise on ~8 mV lines (~40 dB): the lines to well under 1 %.
+  EXPECT_NEAR(k[0] / 55.0, 1.0, 1e-2);
+  EXPECT_NEAR(k[1] / 85.0, 1.0, 1e-2);
+  EXPECT_EQ(file.string_attribute("/", "file_type"), "stengmc-inverse");
+  EXPECT_TRUE(std::filesystem::exists(scratch.file("out.png"))) << r.output;
+}
+
+}  // namespace
+}  // namespace stengmc
