@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, runs the paper's studies, the shipped
-# random surfaces and a quick ensemble with their figures, and ends with the ensemble's
-# summary table and where everything is.
+# random surfaces and a quick ensemble with their figures, then the quick inverse demo (a
+# small calibration bank and one synthetic record inverted), and ends with where
+# everything is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -9,5 +10,6 @@ bash scripts/build.sh
 bash scripts/run_paper_studies.sh
 bash scripts/run_surface_examples.sh
 bash scripts/run_ensemble_examples.sh
+bash scripts/run_inverse_demo.sh
 echo
-echo "All results: $(realpath results)/{paper,surfaces,ensembles}/ (*.h5 and *.png)"
+echo "All results: $(realpath results)/{paper,surfaces,ensembles,inverse_demo}/ (*.h5 and *.png)"

@@ -45,10 +45,11 @@ def law_pdf(family, first, second, k):
     return stats.weibull_min(c=first, scale=second).pdf(k)
 
 
-def spectrum(v, dt):
+def spectrum(v, dt, padding=4):
+    """Hann-windowed amplitude spectrum (MODEL.md §3), zero-padded to draw the lines' shapes."""
     w = np.hanning(len(v))
-    a = 2 * np.abs(np.fft.rfft((v - v.mean()) * w)) / w.sum()
-    return np.fft.rfftfreq(len(v), dt), a
+    a = 2 * np.abs(np.fft.rfft((v - v.mean()) * w, padding * len(v))) / w.sum()
+    return np.fft.rfftfreq(padding * len(v), dt), a
 
 
 def plot_inverse(path, record=0):
