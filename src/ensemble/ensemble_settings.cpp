@@ -13,6 +13,17 @@ namespace stengmc {
 namespace {
 // Realisation ids are written as int64 everywhere.
 constexpr long long MAX_REALISATIONS = std::numeric_limits<std::int64_t>::max();
+
+//! The `parameter` of a sweep axis or a draw: a dotted study key, not one of the ensemble's
+//! own (`verb`: "vary" / "draw"; `participle`: "swept" / "drawn").
+std::string read_parameter(TomlTable& entry, const std::string& verb, const std::string& participle, const std::string& example) {
+  std::string parameter = entry.string("parameter", "");
+  if (parameter.empty()) entry.fail("parameter", "is missing: the dotted key to " + verb + ", e.g. \"" + example + "\"");
+  if (parameter.rfind("ensemble.", 0) == 0 || parameter == "seed")
+    entry.fail("parameter", "= \"" + parameter + "\" cannot be " + participle + " (it defines the ensemble itself)");
+  return parameter;
+}
+
 }  // namespace
 
 EnsembleSettings read_ensemble_settings(TomlTable& t) {
@@ -44,11 +55,7 @@ EnsembleSettings read_ensemble_settings(TomlTable& t) {
   s.trace_all = t.boolean("trace_all", false);
   for (TomlTable& entry : t.table_array("draw")) {
     DrawAxis d;
-    d.parameter = entry.string("parameter", "");
-    if (d.parameter.empty())
-      entry.fail("parameter", "is missing: the dotted key to draw, e.g. \"noise.snr_db\"");
-    if (d.parameter.rfind("ensemble.", 0) == 0 || d.parameter == "seed")
-      entry.fail("parameter", "= \"" + d.parameter + "\" cannot be drawn (it defines the ensemble itself)");
+    d.parameter = read_parameter(entry, "draw", "drawn", "noise.snr_db");
     for (const DrawAxis& other : s.draws)
       if (other.parameter == d.parameter) entry.fail("parameter", "= \"" + d.parameter + "\" is drawn twice");
     const std::string kind = entry.choice("kind", "uniform", {"uniform", "integer", "choice"});
@@ -70,11 +77,7 @@ EnsembleSettings read_ensemble_settings(TomlTable& t) {
   std::size_t grid = 1;
   for (TomlTable& axis : t.table_array("sweep")) {
     SweepAxis a;
-    a.parameter = axis.string("parameter", "");
-    if (a.parameter.empty())
-      axis.fail("parameter", "is missing: the dotted key to vary, e.g. \"model.belt_velocity_m_per_s\"");
-    if (a.parameter.rfind("ensemble.", 0) == 0 || a.parameter == "seed")
-      axis.fail("parameter", "= \"" + a.parameter + "\" cannot be swept (it defines the ensemble itself)");
+    a.parameter = read_parameter(axis, "vary", "swept", "model.belt_velocity_m_per_s");
     a.values = axis.number_list("values");
     if (a.values.empty()) axis.fail("values", "is missing or empty: the values the parameter takes");
     for (const SweepAxis& other : s.sweep)

@@ -16,6 +16,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/study.hpp"
 #include "support/cli_runner.hpp"
+#include "support/inverse_device.hpp"
 
 namespace stengmc {
 namespace {
@@ -26,37 +27,13 @@ using testing::ScratchDir;
 // A small known device: 20 us records at 100 MHz, a prior of 1-3 asperities with
 // stiffnesses around 60-90 N/m, so a bank of 50 records takes seconds.
 std::string device_study(const std::string& replace_from = "", const std::string& replace_to = "") {
-  std::string text = R"(duration_s = 20e-6
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = 75
-[inverse]
-count = [1, 3]
+  std::string text = testing::known_device_study("20e-6", R"(count = [1, 3]
 median_n_per_m = [60, 90]
 sigma_log = [0.1, 0.2]
 snr_db = [25, 35]
 calibration_records = 50
 seed = 5
-)";
+)");
   if (!replace_from.empty()) {
     const auto at = text.find(replace_from);
     EXPECT_NE(at, std::string::npos) << replace_from;

@@ -25,6 +25,7 @@
 #include "inverse/atom_table.hpp"
 #include "inverse/forward_atom.hpp"
 #include "inverse/record_estimator.hpp"
+#include "inverse/sample_statistics.hpp"
 #include "inverse/simulated_record.hpp"
 
 using namespace stengmc;
@@ -41,20 +42,6 @@ struct Outcome {
   double simulate_seconds = 0.0;
   bool valid = false;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double sd_log(const std::vector<double>& v) {
-  if (v.size() < 2) return 0.0;
-  double mean = 0.0, var = 0.0;
-  for (double x : v) mean += std::log(x) / static_cast<double>(v.size());
-  for (double x : v) var += (std::log(x) - mean) * (std::log(x) - mean) / static_cast<double>(v.size() - 1);
-  return std::sqrt(var);
-}
 
 void report(const char* label, const std::vector<Outcome>& all, bool (*keep)(const Outcome&)) {
   double se = 0.0, sd_se = 0.0;
@@ -74,7 +61,7 @@ void report(const char* label, const std::vector<Outcome>& all, bool (*keep)(con
   }
   if (count == 0) return;
   std::printf("%-12s %5d  n RMSE %6.3f  exact %5.1f %%  median-k |rel err| median %.4f  sd(ln k) RMSE %.4f\n", label, count,
-              std::sqrt(se / count), 100.0 * exact / count, median(median_errors),
+              std::sqrt(se / count), 100.0 * exact / count, sample_median(median_errors),
               sd_count ? std::sqrt(sd_se / sd_count) : 0.0);
 }
 
@@ -127,9 +114,9 @@ int main(int argc, char** argv) {
       for (double& x : v) x += noise(engine);
       const RecordEstimate e = estimator.estimate(v);
       o.n_hat = e.count;
-      o.median_true = median(k);
+      o.median_true = sample_median(k);
       o.median_hat = e.median_stiffness_n_per_m > 0 ? e.median_stiffness_n_per_m : 1.0;
-      o.sd_true = sd_log(k);
+      o.sd_true = sample_sd_log(k);
       o.sd_hat = e.sd_log_stiffness;
       o.seconds = e.seconds;
       o.valid = true;

@@ -18,46 +18,19 @@
 #include "inverse/simulated_record.hpp"
 #include "io/study.hpp"
 #include "support/cli_runner.hpp"
+#include "support/inverse_device.hpp"
 
 namespace stengmc {
 namespace {
 
 using testing::ScratchDir;
 
-//! A known-device study (Table 1-2 values, v_b = 10 m/s, l = 50 um) with records of
-//! `duration` at 100 MHz and the given [inverse] table.
-std::string device_study(const std::string& duration, const std::string& inverse) {
-  return "duration_s = " + duration + R"(
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = 75
-[inverse]
-)" + inverse;
-}
+using testing::known_device_study;
 
 TEST(InverseEstimation, NoiseFreeRecordOfFourSeparatedLines) {
   // The issue's regime (100 us at 100 MHz, prior n 1..16, lognormal medians 40-120 N/m);
   // four lines 0.87, 1.23, 1.67, 2.25 MHz apart by ~25 line widths.
-  const Study study = parse_study(device_study("100e-6", ""), "four_lines.toml", std::nullopt);
+  const Study study = parse_study(known_device_study("100e-6", ""), "four_lines.toml", std::nullopt);
   const InverseSetup setup = inverse_setup(study);
   const auto [low, high] = atom_range(setup);
   const AtomTable atoms(setup.device, setup.grid, low, high);
@@ -76,7 +49,7 @@ TEST(InverseEstimation, NoiseFreeRecordOfFourSeparatedLines) {
 TEST(InverseEstimation, RecordOutsideThePriorIsWarnedAbout) {
   // A narrow prior (medians 60-80 N/m, sigma_log 0.1-0.15: k within ~39-140 N/m) and a
   // record with a line at 190 N/m (inside the atoms' 1.25x margin, outside the prior).
-  const Study study = parse_study(device_study("30e-6", "median_n_per_m = [60, 80]\nsigma_log = [0.1, 0.15]\ncount = [1, 6]\n"),
+  const Study study = parse_study(known_device_study("30e-6", "median_n_per_m = [60, 80]\nsigma_log = [0.1, 0.15]\ncount = [1, 6]\n"),
                                   "narrow.toml", std::nullopt);
   const InverseSetup setup = inverse_setup(study);
   const auto [low, high] = atom_range(setup);
@@ -108,7 +81,7 @@ TEST(InverseEstimation, NinetyPercentIntervalsCoverHeldOutRecords) {
   CalibrationOptions options;
   options.show_progress = false;
   options.seed = 11;
-  const Study study = parse_study(device_study("30e-6", inverse), "coverage.toml", std::nullopt);
+  const Study study = parse_study(known_device_study("30e-6", inverse), "coverage.toml", std::nullopt);
   const CalibrationBank bank = run_calibration(study, scratch.file("bank.journal"), options);
   options.seed = 12;
   const CalibrationBank held_out = run_calibration(study, scratch.file("held_out.journal"), options);
