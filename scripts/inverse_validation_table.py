@@ -130,7 +130,7 @@ def main(argv):
               f"{np.median([r['med_err'] for r in sel]):.2e} | {np.mean([r['med_cover'] for r in sel]):.3f} | "
               f"{sd_rmse:.4f} | {sd_cover:.3f} | {np.sqrt(np.mean(ne ** 2)):.2f} | {100 * np.mean(ne == 0):.1f} % |")
 
-    print("| records | signals | n RMSE | exact | 90 % interval of n covers | median k: median abs. rel. error | "
+    print("| bin | signals | n RMSE | exact | 90 % interval of n covers | median k: median abs. rel. error | "
           "its 90 % interval covers | sd(ln k) RMSE | its 90 % interval covers | naive FFT count: n RMSE | naive exact |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     line("all", lambda r: True)

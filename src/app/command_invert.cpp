@@ -101,7 +101,15 @@ void run(const InvertOptions& options) {
                        "'s: invert records of one grid together");
     grid = g;
   }
-  const InverseSetup setup = inverse_setup(study, grid);
+  InverseSetup setup;
+  try {
+    setup = inverse_setup(study, grid);
+  } catch (const InputError& e) {
+    // A sample rate too low for the prior is the records' fault as much as the prior's.
+    const std::string what = e.what();
+    if (what.rfind("the record's sample rate", 0) == 0) throw InputError(records.front().name + ": " + what);
+    throw;
+  }
 
   // The bank: given, or the default one if it exists; it must be made for this device.
   std::string bank_path = options.bank;

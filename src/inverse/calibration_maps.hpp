@@ -54,10 +54,10 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
 inline constexpr std::size_t POPULATION_BIN_COUNTS = 4;
 
 //! Standard error of ln(median k) from the lines' standard errors in ln k (the middle line's,
-//! or half the root-sum-square of the middle two), floored at 1e-4.
+//! or half the root-sum-square of the middle two), floored at 1e-12.
 double median_log_scale(std::vector<double> stiffness, std::vector<double> log_stiffness_se);
 //! Standard error of the sample sd of ln k by first-order propagation of the lines' errors,
-//! floored at 1e-4 (0 below two lines).
+//! floored at 1e-12 (0 below two lines).
 double sd_log_scale(const std::vector<double>& stiffness, const std::vector<double>& log_stiffness_se);
 
 struct CalibratedEstimate {
