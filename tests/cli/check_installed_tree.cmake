@@ -26,7 +26,10 @@ foreach(expected bin/stengmc share/stengmc/scripts/plot_run.py share/stengmc/scr
   endif()
 endforeach()
 
-file(STRINGS "${prefix}/bin/stengmc" source_paths REGEX "${SOURCE_DIR}|${BUILD_DIR}")
+# The paths as literal regular expressions (a '+' or '.' in a folder name must not match more).
+string(REGEX REPLACE "([][+.*()^$?|\\])" "\\\\\\1" source_pattern "${SOURCE_DIR}")
+string(REGEX REPLACE "([][+.*()^$?|\\])" "\\\\\\1" build_pattern "${BUILD_DIR}")
+file(STRINGS "${prefix}/bin/stengmc" source_paths REGEX "${source_pattern}|${build_pattern}")
 if(source_paths)
   message(FATAL_ERROR "the installed binary names the source or build tree: ${source_paths}")
 endif()
