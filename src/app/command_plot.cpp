@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/install_layout.hpp"
 #include "core/error.hpp"
 
 namespace stengmc::app {
@@ -26,7 +27,7 @@ std::string quoted(const std::string& text) {
 }  // namespace
 
 int render_figures(const std::string& h5_path) {
-  const std::string script = std::string(STENGMC_SCRIPTS_DIR) + "/plot_run.py";
+  const std::string script = (scripts_dir() / "plot_run.py").string();
   const std::string command = python() + " " + quoted(script) + " " + quoted(h5_path);
   std::fflush(stdout);  // keep our lines ahead of the script's in a pipe
   return std::system(command.c_str());

@@ -16,7 +16,7 @@ namespace stengmc {
 struct EnsembleOptions {
   std::string progress_label = "ensemble";  //!< e.g. "point 3/14" in a sweep
   int threads = 0;                     //!< 0: OpenMP's default (OMP_NUM_THREADS or the cores)
-  std::optional<std::uint64_t> only;   //!< run this realisation alone (no journal)
+  std::optional<std::uint64_t> only{};  //!< run this realisation alone (no journal)
   bool restart = false;                //!< discard an existing journal instead of resuming it
   bool show_progress = true;           //!< progress bar with ETA and running statistics
 };

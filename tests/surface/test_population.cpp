@@ -465,13 +465,13 @@ nominal_load_n = 10
   for (int k = 0; k <= 8; ++k) d.push_back(0.5 * k * sigma);  // to 4 s: ~366 contacts expected
   for (double dk : d) log_w.push_back(std::log(hertz_contact_at_separation(p.height_m, R_S, e_star, dk).total_load_n));
   const std::size_t m = d.size();
-  const double d_mean = std::accumulate(d.begin(), d.end(), 0.0) / m;
+  const double d_mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(m);
   double sdd = 0.0;
   for (double dk : d) sdd += (dk - d_mean) * (dk - d_mean);
   std::vector<double> slope_weight(m), intercept_weight(m);
   for (std::size_t k = 0; k < m; ++k) {
     slope_weight[k] = (d[k] - d_mean) / sdd;
-    intercept_weight[k] = 1.0 / m - d_mean * slope_weight[k];
+    intercept_weight[k] = 1.0 / static_cast<double>(m) - d_mean * slope_weight[k];
   }
   double slope = 0.0, intercept = 0.0;
   for (std::size_t k = 0; k < m; ++k) slope += slope_weight[k] * log_w[k], intercept += intercept_weight[k] * log_w[k];

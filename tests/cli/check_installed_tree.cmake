@@ -1,0 +1,49 @@
+# The installed tree stands on its own: `cmake --install` into a temporary prefix, the
+# prefix moved elsewhere (so no path the build knew exists any more), then the moved
+# binary runs a shipped example study and plots its output with the installed scripts.
+# Fails unless each step exits 0 and its product exists, and if the installed binary
+# names the source or build tree (a compiled-in absolute path would break once moved).
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}/results")
+
+function(run_step what)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY "${WORK_DIR}/results"
+                  RESULT_VARIABLE status OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${what} exited ${status}:\n${output}")
+  endif()
+endfunction()
+
+run_step("cmake --install" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/staged")
+file(RENAME "${WORK_DIR}/staged" "${WORK_DIR}/moved")
+set(prefix "${WORK_DIR}/moved")
+
+foreach(expected bin/stengmc share/stengmc/scripts/plot_run.py share/stengmc/scripts/stengmc_h5.py
+                 share/stengmc/examples/studies/paper/fig2_k155.toml
+                 share/stengmc/examples/surfaces/paper_four_stiffnesses.toml share/doc/stengmc/model.md)
+  if(NOT EXISTS "${prefix}/${expected}")
+    message(FATAL_ERROR "the install lacks ${expected}")
+  endif()
+endforeach()
+
+# The paths as literal regular expressions (a '+' or '.' in a folder name must not match more).
+string(REGEX REPLACE "([][+.*()^$?|\\])" "\\\\\\1" source_pattern "${SOURCE_DIR}")
+string(REGEX REPLACE "([][+.*()^$?|\\])" "\\\\\\1" build_pattern "${BUILD_DIR}")
+file(STRINGS "${prefix}/bin/stengmc" source_paths REGEX "${source_pattern}|${build_pattern}")
+if(source_paths)
+  message(FATAL_ERROR "the installed binary names the source or build tree: ${source_paths}")
+endif()
+
+# A fixed-list paper study (its surface file is found through ../../surfaces) and a
+# random-surface study, both from the installed examples.
+run_step("stengmc run (paper study)" "${prefix}/bin/stengmc" run
+         "${prefix}/share/stengmc/examples/studies/paper/fig2_k155.toml" --out fig2_k155.h5)
+run_step("stengmc run (random surface)" "${prefix}/bin/stengmc" run
+         "${prefix}/share/stengmc/examples/studies/surfaces/gw_vb10.toml" --out gw_vb10.h5)
+run_step("stengmc plot" "${prefix}/bin/stengmc" plot fig2_k155.h5 gw_vb10.h5)
+foreach(product fig2_k155.h5 fig2_k155.png gw_vb10.h5 gw_vb10.png)
+  if(NOT EXISTS "${WORK_DIR}/results/${product}")
+    message(FATAL_ERROR "missing ${WORK_DIR}/results/${product}")
+  endif()
+endforeach()
+message(STATUS "installed, moved, ran and plotted from ${prefix}")
