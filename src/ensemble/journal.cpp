@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "io/posix_file.hpp"
 
 namespace stengmc {
 
@@ -197,22 +198,6 @@ RealisationRecord decode_payload(std::string_view payload, const std::string& pa
 
 // ---------------------------------------------------------------- file access
 
-//! Writes all of `bytes` at `offset`, retrying short writes and interruptions; false with
-//! errno set on failure.
-bool write_all(int fd, std::uint64_t offset, std::string_view bytes) {
-  while (!bytes.empty()) {
-    const ssize_t n = ::pwrite(fd, bytes.data(), bytes.size(), static_cast<off_t>(offset));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      if (n == 0) errno = EIO;
-      return false;
-    }
-    bytes.remove_prefix(static_cast<std::size_t>(n));
-    offset += static_cast<std::uint64_t>(n);
-  }
-  return true;
-}
-
 //! Reads exactly `size` bytes at `offset` (the caller checked the file is long enough).
 std::string read_at(int fd, std::uint64_t offset, std::uint64_t size, const std::string& path) {
   std::string bytes(size, '\0');
@@ -231,18 +216,6 @@ std::uint64_t little_endian(std::string_view bytes) {
   std::uint64_t v = 0;
   for (std::size_t i = 0; i < bytes.size(); ++i) v |= std::uint64_t{static_cast<unsigned char>(bytes[i])} << (8 * i);
   return v;
-}
-
-//! Makes a new directory entry durable. Best effort: a filesystem that cannot sync a
-//! directory only risks losing the whole journal in a power cut, which costs recomputation,
-//! never a wrong result.
-void sync_directory_of(const std::string& path) {
-  std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  if (folder.empty()) folder = std::filesystem::current_path();
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
 }
 
 }  // namespace
