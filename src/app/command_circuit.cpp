@@ -4,13 +4,13 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
 #include "app/validators.hpp"
 #include "circuit/circuit_solver.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "io/displacement_input.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "tribology/domain_check.hpp"
 #include "tribology/sampled_motion.hpp"
@@ -51,7 +51,7 @@ std::vector<std::unique_ptr<Motion>> interpolate(const DisplacementInput& input,
 }
 
 void run(const CircuitOptions& options) {
-  refuse_overwriting_input(options.input, options.out);
+  check_output_path(options.out, {{options.input, "the displacement file"}});
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
   const DisplacementInput input = csv ? read_displacement_csv(options.input, options.csv_element)
                                       : read_displacement_hdf5(options.input);

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "app/commands.hpp"
+#include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
@@ -67,6 +68,7 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
 void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
                         const EnsembleCommandOptions& options) {
   const std::string out = out_option.empty() ? default_output(study, options) : out_option;
+  check_output_path(out, study_inputs(study), output_option(out_option, study));
   const EnsembleSettings& settings = *study.ensemble;
   if (options.only && *options.only >= settings.realisations)
     throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +

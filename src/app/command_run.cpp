@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
@@ -26,6 +27,7 @@ struct RunOptions {
 void run_single(const RunOptions& options) {
   const Study study = read_study(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output_file : options.out;
+  check_output_path(out, study_inputs(study), output_option(options.out, study));
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
               std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
               study.sample_rate_hz);

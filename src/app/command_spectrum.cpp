@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
 #include "core/error.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
 #include "io/spectrum_file.hpp"
@@ -39,7 +39,7 @@ SpectrumSettings settings_from(const std::string& file) {
 }
 
 void run(const SpectrumOptions& options) {
-  refuse_overwriting_input(options.input, options.out);
+  check_output_path(options.out, {{options.input, "the signal file"}, {options.settings_file, "the settings file"}});
   const SpectrumSettings settings = settings_from(options.settings_file);
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
   const SignalInput signal = csv ? read_signal_csv(options.input) : read_signal_hdf5(options.input);

@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
 #include "io/surface_file.hpp"
@@ -65,7 +65,9 @@ void run(const SurfaceOptions& options) {
                      " summits would keep ~" + std::to_string(total_summits_estimate) + " summits in memory (limit " +
                      std::to_string(MAX_SUMMITS_IN_ONE_FILE) + "): draw fewer and continue with --first");
   const std::string out = options.out.empty() ? default_output(options.surface_file) : options.out;
-  refuse_overwriting_input(options.surface_file, out);
+  std::vector<NamedInput> inputs{{options.surface_file, "the surface file"}, {options.study_file, "the study"}};
+  for (const std::string& file : surface.auxiliary_input_files()) inputs.push_back({file, "a histogram file the surface reads"});
+  check_output_path(out, inputs);
   std::printf("stengmc surface %s: realisations %llu..%llu, seed %llu; validity against %s\n", options.surface_file.c_str(),
               static_cast<unsigned long long>(options.first),
               static_cast<unsigned long long>(options.first + options.realisations - 1),

@@ -29,6 +29,14 @@ std::string Surface::auxiliary_inputs() const {
   return out;
 }
 
+std::vector<std::string> Surface::auxiliary_input_files() const {
+  std::vector<std::string> files;
+  if (!random_) return files;
+  for (const Distribution* law : {&random_->heights, random_->stiffness ? &*random_->stiffness : nullptr})
+    if (law && !law->source().empty()) files.push_back(law->source().substr(0, law->source().find('\n')));
+  return files;
+}
+
 Population Surface::sample(std::uint64_t seed, std::uint64_t realisation) const {
   if (random_) return sample_population(*random_, seed, realisation);
   Population p;
