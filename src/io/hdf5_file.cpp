@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "io/posix_file.hpp"
 
 namespace stengmc {
@@ -253,7 +254,7 @@ void Hdf5Writer::commit() {
 
 Hdf5Reader::Hdf5Reader(std::string path) : path_(std::move(path)) {
   H5::Exception::dontPrint();
-  if (!std::filesystem::exists(path_)) throw InputError(path_ + ": no such file");
+  check_input_file(path_, "an HDF5 file");
   try {
     file_ = H5::H5File(path_, H5F_ACC_RDONLY);
   } catch (const H5::Exception&) {
@@ -362,6 +363,17 @@ std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& obj
     attribute.read(H5::PredType::NATIVE_INT64, &value);
     return value;
   });
+}
+
+void check_format_version(const Hdf5Reader& file, const std::string& path, std::int64_t supported) {
+  if (file.string_attribute("/", "file_type").rfind("stengmc", 0) != 0) return;
+  const auto version = file.integer_attribute("/", "format_version");
+  if (!version) throw InputError(path + ": a stengmc file without an integer root attribute format_version (damaged?)");
+  if (*version < 1)
+    throw InputError(path + ": format_version " + std::to_string(*version) + " is not a valid version (>= 1); damaged file?");
+  if (*version > supported)
+    throw InputError(path + ": format_version " + std::to_string(*version) + " is newer than this stengmc reads (" +
+                     std::to_string(supported) + "); update stengmc");
 }
 
 }  // namespace stengmc

@@ -85,4 +85,9 @@ class Hdf5Reader {
   H5::H5File file_;
 };
 
+//! A file whose root `file_type` is a stengmc one says which format it has: refuse one
+//! without a valid `format_version` (an integer >= 1) or with a newer one than this program
+//! reads, `supported` (InputError naming the file). Files of other programs are not checked.
+void check_format_version(const Hdf5Reader& file, const std::string& path, std::int64_t supported);
+
 }  // namespace stengmc

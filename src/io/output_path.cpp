@@ -4,23 +4,10 @@
 #include <system_error>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 
 namespace stengmc {
 
-namespace {
-
-std::string kind_of(std::filesystem::file_type type) {
-  switch (type) {
-    case std::filesystem::file_type::directory: return "a folder";
-    case std::filesystem::file_type::character: return "a character device";
-    case std::filesystem::file_type::block: return "a block device";
-    case std::filesystem::file_type::fifo: return "a FIFO";
-    case std::filesystem::file_type::socket: return "a socket";
-    default: return "not a regular file";
-  }
-}
-
-}  // namespace
 
 void check_output_path(const std::string& out, const std::vector<NamedInput>& inputs, const std::string& option) {
   if (out.empty()) throw InputError(option + " is empty: give the path of the HDF5 file to write");
@@ -28,7 +15,7 @@ void check_output_path(const std::string& out, const std::vector<NamedInput>& in
   const auto status = std::filesystem::status(out, error);  // follows links
   if (!error && status.type() != std::filesystem::file_type::not_found &&
       status.type() != std::filesystem::file_type::regular)
-    throw InputError(option + " " + out + " exists and is " + kind_of(status.type()) +
+    throw InputError(option + " " + out + " exists and is " + describe_file_type(status.type()) +
                      ": stengmc writes its output to a regular file only; choose another output name");
   for (const NamedInput& input : inputs) {
     if (input.path.empty()) continue;

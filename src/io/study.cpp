@@ -81,7 +81,12 @@ void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOver
       (std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name).lexically_normal();
   if (!std::filesystem::exists(path))
     surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
-  auto document = TomlDocument::from_file(path.string());
+  std::unique_ptr<TomlDocument> document;
+  try {
+    document = TomlDocument::from_file(path.string());
+  } catch (const InputError& e) {
+    surface->fail("file", "= \"" + name + "\": " + e.what());
+  }
   for (const ParameterOverride& o : surface_overrides) document->set_number(o.parameter.substr(8), o.value);
   TomlTable table = document->root();
   study.surface = std::make_shared<const Surface>(Surface::from_toml(table, path.parent_path()));
@@ -186,6 +191,7 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);
+    if (study.output_file.empty()) output->fail("file", "is empty: give the path of the HDF5 file to write, or leave the key out");
     if (output->has("traces")) {
       const auto names = output->string_list("traces", {"x", "v", "friction", "current", "charge", "x0"});
       auto wanted = [&](std::string_view name) { return std::find(names.begin(), names.end(), name) != names.end(); };
