@@ -74,7 +74,7 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
     throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +
                      std::to_string(settings.realisations - 1) + " ([ensemble] realisations = " +
                      std::to_string(settings.realisations) + ")");
-  std::vector<GridPoint> grid = prepare_grid(study);
+  std::vector<GridPoint> grid = prepare_grid(study, options.limits);
   print_header(study, grid.size());
   if (!study.surface->random_surface() && !study.noise)
     std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
@@ -82,7 +82,7 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
   std::fflush(stdout);
   for (std::size_t g = 0; g < grid.size(); ++g) {
     EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
-                                .show_progress = true};
+                                .show_progress = true, .limits = options.limits};
     if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
     grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
     grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);
