@@ -7,7 +7,9 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "io/guarded_read.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/input_file.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc::app {
@@ -30,6 +32,8 @@ std::string quoted(const std::string& text) {
 //! Refuses, before Python starts, what no figure script can plot: a file that is not HDF5,
 //! not a stengmc output, or of another format version.
 void check_plottable(const std::string& path) {
+  check_input_file(path, "an HDF5 file");
+  read_in_child_first(path, [&] { read_every_hdf5_object(path); });  // what the scripts will read
   const Hdf5Reader file(path);
   const std::string type = file.string_attribute("/", "file_type");
   if (type.rfind("stengmc-", 0) != 0)

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/guarded_read.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/input_file.hpp"
 #include "io/run_file.hpp"
@@ -24,7 +25,9 @@ std::vector<std::string> split(const std::string& line) {
 
 }  // namespace
 
-DisplacementInput read_displacement_hdf5(const std::string& path) {
+namespace {
+
+DisplacementInput read_hdf5(const std::string& path) {
   Hdf5Reader file(path);
   check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
   DisplacementInput input;
@@ -42,6 +45,14 @@ DisplacementInput read_displacement_hdf5(const std::string& path) {
   for (std::size_t i = 0; i < n; ++i) input.elements.push_back({sigma[i], d0[i], w[i], l[i]});
   validate(input, path);
   return input;
+}
+
+}  // namespace
+
+DisplacementInput read_displacement_hdf5(const std::string& path) {
+  check_input_file(path, "an HDF5 file");
+  read_in_child_first(path, [&] { (void)read_hdf5(path); });
+  return read_hdf5(path);
 }
 
 DisplacementInput read_displacement_csv(const std::string& path, const StengElement& element) {

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/guarded_read.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/input_file.hpp"
 #include "io/run_file.hpp"
@@ -24,9 +25,7 @@ void check_voltages(const SignalInput& input, const std::string& path) {
                        " V is beyond what the analysis can square and sum (|V| <= 1e100 V)");
 }
 
-}  // namespace
-
-SignalInput read_signal_hdf5(const std::string& path) {
+SignalInput read_hdf5(const std::string& path) {
   Hdf5Reader file(path);
   check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
   SignalInput input;
@@ -56,6 +55,14 @@ SignalInput read_signal_hdf5(const std::string& path) {
   }
   check_voltages(input, path);
   return input;
+}
+
+}  // namespace
+
+SignalInput read_signal_hdf5(const std::string& path) {
+  check_input_file(path, "an HDF5 file");
+  read_in_child_first(path, [&] { (void)read_hdf5(path); });
+  return read_hdf5(path);
 }
 
 SignalInput read_signal_csv(const std::string& path) {

@@ -18,6 +18,12 @@ std::string_view domain_policy_name(DomainPolicy policy) { return policy == Doma
 
 namespace {
 
+// Friction coefficients at most (read_friction says why).
+constexpr double MAX_FRICTION_COEFFICIENT = 1e3;
+
+// Model 2's atan sharpness s at most [s/m] (read_model says why).
+constexpr double MAX_ATAN_SHARPNESS_S_PER_M = 1e10;
+
 // Drive periods a Model 1 run may span: omega t then still has ~1e-3 rad of precision.
 constexpr double MAX_DRIVE_PERIODS = 1e12;
 
@@ -25,6 +31,12 @@ FrictionCoefficients read_friction(TomlTable& model) {
   FrictionCoefficients f;
   f.static_coefficient = model.positive("static_friction", f.static_coefficient);
   f.kinetic_coefficient = model.non_negative("kinetic_friction", f.kinetic_coefficient);
+  // No known pair of materials comes near 1e3 (clean metals in vacuum reach ~10); beyond
+  // it the forces only drive the integrators into their step budgets (found by the fuzz
+  // tests: mu_s = 2e9 ran Model 2 for a minute).
+  if (f.static_coefficient > MAX_FRICTION_COEFFICIENT)
+    model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be <= " +
+                                      format_number(MAX_FRICTION_COEFFICIENT));
   if (f.static_coefficient < f.kinetic_coefficient)
     model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be >= kinetic_friction = " +
                                       format_number(f.kinetic_coefficient));
@@ -56,6 +68,13 @@ void read_model(TomlTable& root, Study& study) {
     p.damping_n_s_per_m = model->non_negative("damping_n_s_per_m", p.damping_n_s_per_m);
     p.stribeck_decay_s_per_m = model->non_negative("stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
     p.atan_sharpness_s_per_m = model->positive("atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
+    // Sharper than a 0.1 nm/s transition is the sign function itself at double precision,
+    // and the stiff friction makes RODAS4 run into its step budget (1e11 took ~5x the
+    // steps of 1e3, 1e15 exhausted 5e7 steps: found by the fuzz tests).
+    if (p.atan_sharpness_s_per_m > MAX_ATAN_SHARPNESS_S_PER_M)
+      model->fail("atan_sharpness_s_per_m", "= " + format_number(p.atan_sharpness_s_per_m) + " must be <= " +
+                                                format_number(MAX_ATAN_SHARPNESS_S_PER_M) +
+                                                " (a friction transition narrower than 0.1 nm/s)");
     const std::string form = model->choice("friction_form", "consistent", {"consistent", "literal"});
     p.friction_form = form == "consistent" ? FrictionForm::consistent : FrictionForm::literal;
     p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);

@@ -203,5 +203,23 @@ TEST(NamedErrors, PlotRefusesAFileItCannotPlot) {
   expect_named_error(run_cli("plot " + truncated, scratch), {"truncated.h5"});
 }
 
+//! Values the fuzz tests (tests/fuzz) found making a run loop or grind for minutes: each
+//! is refused where it is read. (Its damaged HDF5 file that made libhdf5 loop for ever is
+//! the fuzz test Fuzz.hdf5 itself, seed 1.)
+TEST(NamedErrors, ValuesTheFuzzerFoundHangingAreRefusedAtTheirKey) {
+  ScratchDir scratch("fuzz-found");
+  const std::string head = "duration_s = 50e-6\nsample_rate_hz = 100e6\n[model]\n";
+  const std::string asperities = "[surface]\n[surface.defaults]\nlength_m = 50e-6\n[[surface.asperity]]\nstiffness_n_per_m = 75\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {head + "kind = \"model1\"\n" + asperities + "drive_phase_rad = 1e15\n", "study.toml:10: [surface.asperity[0]] drive_phase_rad"},
+      {head + "kind = \"model2\"\natan_sharpness_s_per_m = 1e15\n" + asperities, "study.toml:5: [model] atan_sharpness_s_per_m"},
+      {head + "kind = \"model2\"\nstatic_friction = 2147483648\n" + asperities, "study.toml:5: [model] static_friction"}};
+  for (const auto& [text, where] : cases) {
+    SCOPED_TRACE(where);
+    expect_named_error(run_cli("run " + scratch.write("study.toml", text) + " -o " + scratch.file("out.h5"), scratch, "timeout 30"),
+                       {where});
+  }
+}
+
 }  // namespace
 }  // namespace stengmc
