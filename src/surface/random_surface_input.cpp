@@ -210,8 +210,8 @@ void read_drive(TomlTable& root, RandomSurface& s) {
   const std::string rule = t->choice("phase", "fixed", {"fixed", "uniform"});
   s.phase_rule = rule == "fixed" ? PhaseRule::fixed : PhaseRule::uniform;
   if (s.phase_rule == PhaseRule::fixed) s.phase_rad = t->number("phase_rad", s.phase_rad);
-  if (!(std::abs(s.phase_rad) <= MAX_DRIVE_PHASE_RAD)) t->fail("phase_rad", "must lie within +-1e6 rad (an angle)");
   else if (t->has("phase_rad")) t->fail("phase_rad", "is not used with phase = \"uniform\"");
+  if (!(std::abs(s.phase_rad) <= MAX_DRIVE_PHASE_RAD)) t->fail("phase_rad", "must lie within +-1e6 rad (an angle)");
 }
 
 }  // namespace
