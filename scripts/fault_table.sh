@@ -89,6 +89,18 @@ row() {  # fault | command | exit | message | left behind | inputs/journal | ver
   [[ $7 == clean ]] || failures=$((failures + 1))
 }
 excerpt() { grep -m1 -E "stengmc: |work limit" "$1" | sed -e "s#$work/##g" -e "s#$PWD/##g" -e 's/|/\\|/g' | cut -c1-150; }
+# "yes" when two ensemble files hold bitwise the same per-realisation and per-asperity data.
+same_ensemble() {
+  $python - "$1" "$2" <<'EOF'
+import sys, h5py, numpy as np
+try:
+    a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
+    names = [f"realisations/{k}" for k in ("voltage_rms_v", "final_charge_c", "asperity_count")] + ["asperities/stiffness_n_per_m"]
+    print("yes" if all(np.array_equal(a[n][()], b[n][()]) for n in names) else "NO")
+except OSError:
+    print("NO (no output)")
+EOF
+}
 leftover() { local l; l=$(ls -A "$disk" | grep -v -E '^fill$' | paste -sd' '); echo "${l:-nothing}"; }
 
 # A full disk: `free` bytes left for the output (0: full before the command starts).
@@ -143,13 +155,7 @@ journal=no; [[ -f $disk/ensemble.h5.journal ]] && journal=yes
 rm -f "$disk/fill"
 "$stengmc" run "$work/ensemble.toml" -j 2 -o "$disk/ensemble.h5" > "$work/log2" 2>&1
 resumed=$(grep -o "[0-9]* resumed" "$work/log2" || echo "0 resumed")
-same=$($python - "$disk/ensemble.h5" "$work/reference.h5" <<'EOF'
-import sys, h5py, numpy as np
-a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
-names = [f"realisations/{k}" for k in ("voltage_rms_v", "final_charge_c", "asperity_count")] + ["asperities/stiffness_n_per_m"]
-print("yes" if all(np.array_equal(a[n][()], b[n][()]) for n in names) else "NO")
-EOF
-)
+same=$(same_ensemble "$disk/ensemble.h5" "$work/reference.h5")
 verdict=clean
 [[ $rc -eq 1 && $journal == yes && $left == "ensemble.h5.journal" && $resumed == "6 resumed" && $same == yes ]] \
   && grep -q "No space left on device" "$work/log" || verdict=FAILED
@@ -191,13 +197,7 @@ for _ in $(seq 600); do [[ -s $disk/long.h5.journal ]] && (( $(stat -c %s "$disk
 kill -KILL "$pid"; wait "$pid"; rc=$?
 "$stengmc" run "$work/ensemble_long.toml" -j 2 -o "$disk/long.h5" > "$work/log" 2>&1; rc2=$?
 resumed=$(grep -o "[0-9]* resumed" "$work/log" || echo "0 resumed")
-same=$($python - "$disk/long.h5" "$work/long_reference.h5" <<'EOF'
-import sys, h5py, numpy as np
-a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
-names = [f"realisations/{k}" for k in ("voltage_rms_v", "final_charge_c", "asperity_count")] + ["asperities/stiffness_n_per_m"]
-print("yes" if all(np.array_equal(a[n][()], b[n][()]) for n in names) else "NO")
-EOF
-)
+same=$(same_ensemble "$disk/long.h5" "$work/long_reference.h5")
 verdict=clean; [[ $rc2 -eq 0 && $same == yes && $resumed != "0 resumed" ]] || verdict=FAILED
 row "SIGKILL during an ensemble" "run ensemble.toml (40 realisations), then the same again" "$rc (killed), then $rc2" \
     "(none: killed)" "after the rerun: $(leftover)" "rerun: $resumed; datasets equal to an uninterrupted run: $same" "$verdict"

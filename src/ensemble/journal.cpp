@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "io/posix_file.hpp"
+#include "io/temporary_file.hpp"
 
 namespace stengmc {
 
@@ -299,23 +300,13 @@ void Journal::create(const JournalIdentity& identity) {
   // Written and synced under a temporary name, then linked into place: the journal appears
   // with its whole header or not at all. link() (unlike rename) never replaces a journal
   // another run created meanwhile; that one is then opened and its identity checked.
-  const std::string temporary = path_ + "." + std::to_string(::getpid()) + ".tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) throw_system(temporary, "cannot create the journal (does the folder exist and is it writable?)", errno);
-  if (!write_all(fd, 0, header.bytes()) || ::fsync(fd) != 0) {
-    const int error = errno;
-    ::close(fd);
-    ::unlink(temporary.c_str());
-    throw_system(temporary, "cannot write the journal header", error);
-  }
-  ::close(fd);
-  if (::link(temporary.c_str(), path_.c_str()) != 0 && errno != EEXIST &&
-      ::rename(temporary.c_str(), path_.c_str()) != 0) {  // a filesystem without hard links
-    const int error = errno;
-    ::unlink(temporary.c_str());
-    throw_system(path_, "cannot create the journal", error);
-  }
-  ::unlink(temporary.c_str());
+  // The temporary is removed however this ends, also by a SIGTERM, and a stale one of a
+  // killed run by the next (io/temporary_file.hpp).
+  const TemporaryFile temporary(path_);
+  write_file_durably(temporary.path(), header.bytes(), path_, "the journal header");
+  if (::link(temporary.path().c_str(), path_.c_str()) != 0 && errno != EEXIST &&
+      ::rename(temporary.path().c_str(), path_.c_str()) != 0)  // a filesystem without hard links
+    throw_system(path_, "cannot create the journal", errno);
   sync_directory_of(path_);
 }
 

@@ -25,20 +25,21 @@ bool write_all(int fd, std::uint64_t offset, std::string_view bytes) {
   return true;
 }
 
-void write_file_durably(const std::string& path, std::string_view bytes, const std::string& name) {
-  const auto fail = [&](const std::string& what, int error) {
-    throw Error(name + ": " + what + ": " + std::generic_category().message(error));
+void write_file_durably(const std::string& path, std::string_view bytes, const std::string& name,
+                        const std::string& what) {
+  const auto fail = [&](const std::string& action, int error) {
+    throw Error(name + ": " + action + ": " + std::generic_category().message(error));
   };
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) fail("cannot create the output file", errno);
+  if (fd < 0) fail("cannot create " + what, errno);
   // fsync before the caller renames: otherwise a power cut can leave the final name on an
   // empty file (ext4's delayed allocation).
   if (!write_all(fd, 0, bytes) || ::fsync(fd) != 0) {
     const int error = errno;
     ::close(fd);
-    fail("cannot write the output file", error);
+    fail("cannot write " + what, error);
   }
-  if (::close(fd) != 0) fail("cannot write the output file", errno);  // NFS reports late
+  if (::close(fd) != 0) fail("cannot write " + what, errno);  // NFS reports late
 }
 
 void sync_directory_of(const std::string& path) {

@@ -12,6 +12,7 @@
 
 #include "io/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
+#include "support/test_surfaces.hpp"
 
 namespace stengmc {
 namespace {
@@ -80,28 +81,11 @@ TEST(NamedErrors, AnEmptyOutputFileKeyIsRefusedWithItsLine) {
   expect_named_error(run_cli("run " + study, scratch), {"study.toml:9:", "[output] file", "empty"});
 }
 
-const char* HISTOGRAM_SURFACE = R"(kind = "random"
-nominal_area_m2 = 1e-6
-[summits]
-count_rule = "fixed"
-count = 3
-[heights]
-kind = "empirical"
-file = "h.csv"
-[stiffness]
-kind = "uniform"
-min = 50
-max = 150
-[load]
-rule = "fixed"
-normal_load_n = 1e-3
-)";
-
 //! 1e308 in a CSV: a histogram bin that wide overflowed the target law (exit 1, "refusing
 //! to write a non-finite value"); a voltage that large overflows its own square.
 TEST(NamedErrors, HugeCsvValuesAreRefusedWithTheirLine) {
   ScratchDir scratch("huge-csv");
-  const std::string surface = scratch.write("surface.toml", HISTOGRAM_SURFACE);
+  const std::string surface = scratch.write("surface.toml", testing::HISTOGRAM_SURFACE);
   scratch.write("h.csv", "lower,upper,weight\n-1e308,1e308,1\n");
   expect_named_error(run_cli("surface " + surface + " -k 2 -o " + scratch.file("out.h5"), scratch), {"h.csv:2:", "width"});
 
@@ -128,7 +112,7 @@ TEST(NamedErrors, SubnormalCsvValuesAreAccepted) {
   const auto spectrum = run_cli("spectrum " + scratch.write("v.csv", v.str()) + " -o " + scratch.file("s.h5"), scratch);
   EXPECT_EQ(spectrum.exit_code, 0) << spectrum.output;
   scratch.write("h.csv", "100e-6,120e-6,1e-310\n120e-6,130e-6,1\n");
-  const auto surface = run_cli("surface " + scratch.write("surface.toml", HISTOGRAM_SURFACE) + " -k 2 -o " +
+  const auto surface = run_cli("surface " + scratch.write("surface.toml", testing::HISTOGRAM_SURFACE) + " -k 2 -o " +
                                    scratch.file("h.h5"), scratch);
   EXPECT_EQ(surface.exit_code, 0) << surface.output;
 }

@@ -36,6 +36,7 @@
 
 #include "io/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
+#include "support/test_surfaces.hpp"
 
 namespace stengmc {
 namespace {
@@ -204,23 +205,6 @@ TEST(FullDisk, AnEnsembleOnAFullDiskSaysSoAndLeavesNothing) {
 
 // ---------------------------------------------------------------- output = input
 
-const char* SURFACE_WITH_HISTOGRAM = R"(kind = "random"
-nominal_area_m2 = 1e-6
-[summits]
-count_rule = "fixed"
-count = 3
-[heights]
-kind = "empirical"
-file = "h.csv"
-[stiffness]
-kind = "uniform"
-min = 50
-max = 150
-[load]
-rule = "fixed"
-normal_load_n = 1e-3
-)";
-
 struct Refusal {
   std::string arguments;  //!< the command line
   std::string input;      //!< the input it would have destroyed
@@ -230,7 +214,7 @@ struct Refusal {
 //! the input unchanged.
 TEST(OutputPath, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
   ScratchDir scratch("output-is-input");
-  const std::string surface = scratch.write("surface.toml", SURFACE_WITH_HISTOGRAM);
+  const std::string surface = scratch.write("surface.toml", testing::HISTOGRAM_SURFACE);
   const std::string histogram = scratch.write("h.csv", "100e-6,120e-6,1\n");
   const std::string study = scratch.write("study.toml", std::string(RUN_STUDY).substr(0, std::string(RUN_STUDY).find("[surface]")) +
                                                             "[surface]\nfile = \"surface.toml\"\n");
