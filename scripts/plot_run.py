@@ -22,7 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import attribute  # noqa: E402
+from stengmc_h5 import attribute, refuse  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_ensemble  # noqa: E402  (beside this script)
@@ -36,13 +36,13 @@ def open_checked(path):
     f = h5py.File(path, "r")
     kind = attribute(f, "file_type")
     if kind == plot_surface.FILE_TYPE:
-        sys.exit(f"{path}: a `stengmc surface` file has no voltages to compare; plot it without --compare")
+        refuse(f"{path}: a `stengmc surface` file has no voltages to compare; plot it without --compare")
     if kind == plot_ensemble.FILE_TYPE:
-        sys.exit(f"{path}: an ensemble file has no single voltage to compare; plot it without --compare")
+        refuse(f"{path}: an ensemble file has no single voltage to compare; plot it without --compare")
     if kind not in ("stengmc-run", "stengmc-circuit", "stengmc-spectrum"):
-        sys.exit(f"{path}: not a stengmc output file (file_type = {kind!r})")
+        refuse(f"{path}: not a stengmc output file (file_type = {kind!r})")
     if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
-        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
+        refuse(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
     return f
 
 
@@ -69,6 +69,8 @@ def plot_run(path):
         return
     f = open_checked(path)
     if "time" not in f:  # a `stengmc spectrum` output: spectra only
+        if "spectrum/voltage" not in f:
+            refuse(f"{path}: neither /time nor /spectrum/voltage: nothing to plot (a damaged or partial file?)")
         plot_spectra(path)
         return
     t_us = f["time"][:] * 1e6
@@ -232,9 +234,13 @@ def main():
         plot_compare(args.files, args.out)
     else:
         for path in args.files:
-            plot_run(path)
-            if "spectrum/voltage" in h5py.File(path, "r") and "time" in h5py.File(path, "r"):
-                plot_spectra(path)
+            try:
+                plot_run(path)
+                if "spectrum/voltage" in h5py.File(path, "r") and "time" in h5py.File(path, "r"):
+                    plot_spectra(path)
+            except (KeyError, OSError, ValueError, IndexError, TypeError) as e:
+                # A file that says it is a stengmc output but lacks what its layout promises.
+                refuse(f"{path}: cannot plot it: {e} (a damaged or partial file?)")
 
 
 if __name__ == "__main__":

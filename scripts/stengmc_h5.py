@@ -9,6 +9,12 @@ import numpy as np
 SUPPORTED_FORMAT = 1
 
 
+def refuse(message):
+    """Stops with `message` and exit code 2, stengmc's code for bad input (README: exit codes)."""
+    print(message, file=sys.stderr)
+    sys.exit(2)
+
+
 def attribute(node, name, default=""):
     """An attribute, with HDF5 byte strings decoded."""
     value = node.attrs.get(name, default)
@@ -19,16 +25,16 @@ def open_checked(path, file_type, what):
     """The file, after checking it exists, is HDF5, is a `file_type` file (`what` names it
     in the message) and has a format version this script reads; exits with a message otherwise."""
     if not os.path.isfile(path):
-        sys.exit(f"{path}: no such file")
+        refuse(f"{path}: no such file")
     try:
         f = h5py.File(path, "r")
     except OSError as e:
-        sys.exit(f"{path}: not an HDF5 file ({e})")
+        refuse(f"{path}: not an HDF5 file ({e})")
     kind = attribute(f, "file_type")
     if kind != file_type:
-        sys.exit(f"{path}: not a {what} (file_type = {kind!r}, expected {file_type!r})")
+        refuse(f"{path}: not a {what} (file_type = {kind!r}, expected {file_type!r})")
     if int(f.attrs.get("format_version", 0)) != SUPPORTED_FORMAT:
-        sys.exit(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
+        refuse(f"{path}: format_version {f.attrs.get('format_version')} is not {SUPPORTED_FORMAT}")
     return f
 
 

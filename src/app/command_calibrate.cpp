@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "inverse/calibration_run.hpp"
@@ -55,6 +56,8 @@ void run(const CalibrateOptions& options) {
   const std::string out = options.out.empty()
                               ? (std::filesystem::path("results") / std::filesystem::path(options.study_file).stem()).string() + "_bank.h5"
                               : options.out;
+  // The bank itself is this command's input only with --refit, where rewriting it is the point.
+  check_output_path(out, study_inputs(study), options.out.empty() ? "the default bank path" : "--out");
   CalibrationOptions calibration;
   calibration.threads = options.threads;
   calibration.restart = options.restart;

@@ -4,13 +4,15 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
+#include "app/limit_options.hpp"
 #include "app/validators.hpp"
 #include "circuit/circuit_solver.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "io/displacement_input.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/input_file.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "tribology/domain_check.hpp"
 #include "tribology/sampled_motion.hpp"
@@ -25,6 +27,7 @@ struct CircuitOptions {
   std::string interpolation = "spline";
   CircuitParams params;
   StengElement csv_element;  // Table 2 defaults
+  LimitOptions limits;
 };
 
 std::vector<std::unique_ptr<Motion>> interpolate(const DisplacementInput& input, Interpolation interpolation,
@@ -51,11 +54,19 @@ std::vector<std::unique_ptr<Motion>> interpolate(const DisplacementInput& input,
 }
 
 void run(const CircuitOptions& options) {
-  refuse_overwriting_input(options.input, options.out);
+  check_output_path(options.out, {{options.input, "the displacement file"}});
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
+  // A CSV of S bytes holds at most S/2 numbers: bound what reading it may cost first.
+  if (csv)
+    check_work(estimate_circuit(static_cast<double>(check_input_file(options.input, "the displacement CSV file")) / 2.0, 1.0,
+                                options.params.substeps),
+               options.limits.limits(), options.input + ": reading it");
   const DisplacementInput input = csv ? read_displacement_csv(options.input, options.csv_element)
                                       : read_displacement_hdf5(options.input);
   const Interpolation interpolation = parse_interpolation(options.interpolation, "--interpolation");
+  check_work(estimate_circuit(static_cast<double>(input.times_s.size()), static_cast<double>(input.x_m.size()),
+                              options.params.substeps),
+             options.limits.limits(), options.input + ": the circuit");
   const auto motions = interpolate(input, interpolation, options.input);
   std::vector<const Motion*> pointers;
   for (const auto& m : motions) pointers.push_back(m.get());
@@ -120,6 +131,7 @@ void add_circuit_command(CLI::App& app) {
   command->add_option("--length", options->csv_element.length_m, "CSV input: element length l [m]")
       ->capture_default_str()
       ->check(finite_number(false));
+  add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }
 

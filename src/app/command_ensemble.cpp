@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "app/commands.hpp"
+#include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
@@ -67,12 +68,13 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
 void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
                         const EnsembleCommandOptions& options) {
   const std::string out = out_option.empty() ? default_output(study, options) : out_option;
+  check_output_path(out, study_inputs(study), output_option(out_option, study));
   const EnsembleSettings& settings = *study.ensemble;
   if (options.only && *options.only >= settings.realisations)
     throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +
                      std::to_string(settings.realisations - 1) + " ([ensemble] realisations = " +
                      std::to_string(settings.realisations) + ")");
-  std::vector<GridPoint> grid = prepare_grid(study);
+  std::vector<GridPoint> grid = prepare_grid(study, options.limits);
   print_header(study, grid.size());
   if (!study.surface->random_surface() && !study.noise)
     std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
@@ -80,7 +82,7 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
   std::fflush(stdout);
   for (std::size_t g = 0; g < grid.size(); ++g) {
     EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
-                                .show_progress = true};
+                                .show_progress = true, .limits = options.limits};
     if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
     grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
     grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);

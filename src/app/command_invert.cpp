@@ -7,7 +7,7 @@
 #include <mutex>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
+#include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
@@ -82,9 +82,11 @@ void print_summary(const std::vector<Inversion>& inversions, const std::vector<L
 }
 
 void run(const InvertOptions& options) {
-  for (const std::string& s : options.signals) refuse_overwriting_input(s, options.out);
-  refuse_overwriting_input(options.known, options.out);
   const Study study = read_study(options.known, std::nullopt);
+  std::vector<NamedInput> inputs = study_inputs(study);
+  for (const std::string& s : options.signals) inputs.push_back({s, "a measured record"});
+  if (!options.bank.empty()) inputs.push_back({options.bank, "the calibration bank"});
+  check_output_path(options.out, inputs);
 
   // Every record read and checked before anything is computed.
   std::vector<NamedRecord> records;

@@ -1,3 +1,5 @@
+#include <sys/wait.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -6,6 +8,10 @@
 #include "app/commands.hpp"
 #include "app/install_layout.hpp"
 #include "core/error.hpp"
+#include "io/guarded_read.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/input_file.hpp"
+#include "io/run_file.hpp"
 
 namespace stengmc::app {
 
@@ -24,6 +30,19 @@ std::string quoted(const std::string& text) {
   return out + "'";
 }
 
+//! Refuses, before Python starts, what no figure script can plot: a file that is not HDF5,
+//! not a stengmc output, or of another format version.
+void check_plottable(const std::string& path) {
+  check_input_file(path, "an HDF5 file");
+  read_in_child_first(path, [&] { read_every_hdf5_object(path); });  // what the scripts will read
+  const Hdf5Reader file(path);
+  const std::string type = file.string_attribute("/", "file_type");
+  if (type.rfind("stengmc-", 0) != 0)
+    throw InputError(path + ": not a stengmc output file (its file_type is " + (type.empty() ? "missing" : "'" + type + "'") +
+                     ")");
+  check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
+}
+
 }  // namespace
 
 int render_figures(const std::string& h5_path) {
@@ -38,8 +57,13 @@ void add_plot_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("plot", "Render PNG figures of output files (beside each file)");
   command->add_option("files", *files, "HDF5 files written by stengmc")->required()->check(CLI::ExistingFile);
   command->callback([files] {
-    for (const auto& f : *files)
-      if (render_figures(f) != 0) throw Error("plotting " + f + " failed");
+    for (const auto& f : *files) {
+      check_plottable(f);
+      const int status = render_figures(f);
+      // The scripts exit 2 for a file they cannot plot, having said why.
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw InputError(f + ": cannot be plotted (see above)");
+      if (status != 0) throw Error("plotting " + f + " failed");
+    }
   });
 }
 

@@ -3,6 +3,8 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/inputs.hpp"
+#include "app/limit_options.hpp"
 #include "core/error.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
@@ -21,11 +23,14 @@ struct RunOptions {
   bool realisation_given = false;
   bool figures = false;
   EnsembleCommandOptions ensemble;
+  LimitOptions limits;
 };
 
 void run_single(const RunOptions& options) {
   const Study study = read_study(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output_file : options.out;
+  check_output_path(out, study_inputs(study), output_option(options.out, study));
+  check_work(estimate_run(study), options.limits.limits(), study.file + ": the run");
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
               std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
               study.sample_rate_hz);
@@ -35,7 +40,7 @@ void run_single(const RunOptions& options) {
                 static_cast<unsigned long long>(study.realisation),
                 study.surface_file.empty() ? "the inline surface" : study.surface_file.c_str(),
                 static_cast<unsigned long long>(study.seed), study.population.height_m.size(), study.asperities.size());
-  const RunResult result = run_study(study);
+  const RunResult result = run_study(study, stengmc::RunOptions{.show_progress = true, .limits = options.limits.limits()});
   const RunSummary summary = summarise(study, result);
   write_run_file(out, study, result, summary);
   std::printf("%s", format_summary(study, result, summary).c_str());
@@ -50,7 +55,9 @@ void run(const RunOptions& options) {
   // An [ensemble] study runs as an ensemble unless one realisation is asked for.
   const Study base = read_study(options.study_file, std::nullopt);
   if (base.ensemble && !options.realisation_given) {
-    run_ensemble_study(base, options.out, options.figures, options.ensemble);
+    EnsembleCommandOptions ensemble = options.ensemble;
+    ensemble.limits = options.limits.limits();
+    run_ensemble_study(base, options.out, options.figures, ensemble);
     return;
   }
   if (options.ensemble.only || options.ensemble.restart)
@@ -85,6 +92,7 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("--restart", options->ensemble.restart,
                     "Ensemble: discard the journal of an interrupted run instead of resuming it");
+  add_limit_options(command, options->limits);
   command->callback([options, realisation] {
     options->realisation_given = realisation->count() > 0;
     run(*options);

@@ -3,9 +3,11 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
+#include "app/limit_options.hpp"
 #include "core/error.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/input_file.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
 #include "io/spectrum_file.hpp"
@@ -23,6 +25,7 @@ struct SpectrumOptions {
   std::string out;
   std::string settings_file;
   bool figures = false;
+  LimitOptions limits;
 };
 
 //! The [spectrum] table of a study file, or the defaults.
@@ -39,10 +42,18 @@ SpectrumSettings settings_from(const std::string& file) {
 }
 
 void run(const SpectrumOptions& options) {
-  refuse_overwriting_input(options.input, options.out);
+  check_output_path(options.out, {{options.input, "the signal file"}, {options.settings_file, "the settings file"}});
   const SpectrumSettings settings = settings_from(options.settings_file);
   const bool csv = std::filesystem::path(options.input).extension() == ".csv";
+  // A CSV of S bytes holds at most S/4 (t, V) rows: bound what reading it may cost first.
+  if (csv)
+    check_work(estimate_spectrum(static_cast<double>(check_input_file(options.input, "the signal CSV file")) / 4.0, 0.0,
+                                 settings),
+               options.limits.limits(), options.input + ": reading it");
   const SignalInput signal = csv ? read_signal_csv(options.input) : read_signal_hdf5(options.input);
+  check_work(estimate_spectrum(static_cast<double>(signal.times_s.size()), static_cast<double>(signal.currents_a.size()),
+                               settings),
+             options.limits.limits(), options.input + ": the analysis");
   SpectralInput input;
   input.times_s = signal.times_s;
   input.voltage_v = signal.voltage_v;
@@ -92,6 +103,7 @@ void add_spectrum_command(CLI::App& app) {
   command->add_option("-s,--settings", options->settings_file, "A study or TOML file whose [spectrum] table to use (default: the defaults)")
       ->check(CLI::ExistingFile);
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures");
+  add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }
 

@@ -5,9 +5,10 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/output_guard.hpp"
+#include "app/limit_options.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
+#include "io/output_path.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
 #include "io/surface_file.hpp"
@@ -20,8 +21,6 @@ namespace {
 
 // Seeds and realisation ids are stored as int64 attributes and datasets.
 constexpr std::uint64_t MAX_REALISATION_ID = std::numeric_limits<std::int64_t>::max();
-// ~100 bytes per summit across the arrays kept: 2e7 summits is ~2 GB.
-constexpr std::uint64_t MAX_SUMMITS_IN_ONE_FILE = 20'000'000;
 
 struct SurfaceOptions {
   std::string surface_file;
@@ -31,6 +30,7 @@ struct SurfaceOptions {
   std::string study_file;
   std::string out;
   bool figures = false;
+  LimitOptions limits;
 };
 
 std::string default_output(const std::string& surface_file) {
@@ -56,16 +56,15 @@ void run(const SurfaceOptions& options) {
     throw InputError("--first " + std::to_string(options.first) + " with --realisations " +
                      std::to_string(options.realisations) + " passes the largest realisation id, " +
                      std::to_string(MAX_REALISATION_ID));
-  const std::uint64_t total_summits_estimate =
-      static_cast<std::uint64_t>(options.realisations) *
-      static_cast<std::uint64_t>(std::ceil(surface.random_surface() ? surface.random_surface()->mean_summit_count() : 0.0));
-  if (total_summits_estimate > MAX_SUMMITS_IN_ONE_FILE)
-    throw InputError("--realisations " + std::to_string(options.realisations) + " x ~" +
-                     std::to_string(total_summits_estimate / options.realisations) +
-                     " summits would keep ~" + std::to_string(total_summits_estimate) + " summits in memory (limit " +
-                     std::to_string(MAX_SUMMITS_IN_ONE_FILE) + "): draw fewer and continue with --first");
+  // Every realisation's summits stay in memory until the file is written.
+  if (const RandomSurface* random = surface.random_surface())
+    check_work(estimate_surface(*random, static_cast<double>(options.realisations)), options.limits.limits(),
+               options.surface_file + ": --realisations " + std::to_string(options.realisations) +
+                   " (draw fewer and continue with --first)");
   const std::string out = options.out.empty() ? default_output(options.surface_file) : options.out;
-  refuse_overwriting_input(options.surface_file, out);
+  std::vector<NamedInput> inputs{{options.surface_file, "the surface file"}, {options.study_file, "the study"}};
+  for (const std::string& file : surface.auxiliary_input_files()) inputs.push_back({file, "a histogram file the surface reads"});
+  check_output_path(out, inputs);
   std::printf("stengmc surface %s: realisations %llu..%llu, seed %llu; validity against %s\n", options.surface_file.c_str(),
               static_cast<unsigned long long>(options.first),
               static_cast<unsigned long long>(options.first + options.realisations - 1),
@@ -113,6 +112,7 @@ void add_surface_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: results/<surface>_surface.h5)");
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
+  add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/study.hpp"
+#include "pipeline/work_estimate.hpp"
 
 namespace stengmc::app {
 
@@ -22,6 +23,7 @@ struct EnsembleCommandOptions {
   int threads = 0;
   std::optional<std::uint64_t> only;
   bool restart = false;
+  WorkLimits limits;
 };
 
 //! Runs an [ensemble] study: realisations in parallel, journal, statistics, output file.

@@ -72,9 +72,9 @@ std::optional<double> target_half_width(const Study& study, const std::map<std::
 }
 
 //! Runs `ids` in parallel; records go to the journal (if any) and `done`.
-void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, Journal* journal,
-               std::map<std::uint64_t, RealisationRecord>& done, Progress* progress, RunningStatus& status,
-               const RealisationHook& hook) {
+void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
+               Journal* journal, std::map<std::uint64_t, RealisationRecord>& done, Progress* progress,
+               RunningStatus& status, const RealisationHook& hook) {
   std::vector<RealisationRecord> results(ids.size());
   std::mutex mutex;
   std::exception_ptr failure;
@@ -89,7 +89,7 @@ void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int th
     try {
       const std::uint64_t id = ids[static_cast<std::size_t>(k)];
       RealisationRecord record =
-          run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id));
+          run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id), limits);
       if (hook.apply) hook.apply(record);
       if (journal) journal->append(record);
       std::lock_guard lock(mutex);
@@ -142,15 +142,17 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
   RunningStatus status;
 
   if (options.only) {
-    run_batch(study, {*options.only}, 1, nullptr, done, nullptr, status, hook);
+    run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook);
   } else {
     if (options.restart) std::filesystem::remove(journal_path);
     const std::uint64_t identity =
         hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
     Journal journal(journal_path, {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
                                                  "), study " + study.file});
+    // A realisation refused by the work limits is run again: this run's limits may differ.
     for (const RealisationRecord& r : journal.recovered())
-      if (r.realisation < settings.realisations) done.emplace(r.realisation, r);
+      if (r.realisation < settings.realisations && r.failure.rfind(WORK_LIMIT_FAILURE, 0) != 0)
+        done.emplace(r.realisation, r);
     run.resumed = done.size();
     for (const auto& [id, r] : done) status.add(r);
     std::optional<Progress> progress;
@@ -166,7 +168,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
       std::vector<std::uint64_t> ids;
       for (std::uint64_t id = first; id < end; ++id)
         if (!done.count(id)) ids.push_back(id);
-      run_batch(study, ids, run.threads, &journal, done, progress ? &*progress : nullptr, status, hook);
+      run_batch(study, ids, run.threads, options.limits, &journal, done, progress ? &*progress : nullptr, status, hook);
       const auto width = settings.target ? target_half_width(study, done, end) : std::nullopt;
       if (width && *width <= settings.target_half_width && end < settings.realisations) {
         run.stopped_at_target = true;

@@ -10,6 +10,7 @@
 
 #include "ensemble/realisation_record.hpp"
 #include "io/study.hpp"
+#include "pipeline/work_estimate.hpp"
 
 namespace stengmc {
 
@@ -19,6 +20,7 @@ struct EnsembleOptions {
   std::optional<std::uint64_t> only{};  //!< run this realisation alone (no journal)
   bool restart = false;                //!< discard an existing journal instead of resuming it
   bool show_progress = true;           //!< progress bar with ETA and running statistics
+  WorkLimits limits;                   //!< a realisation over them is recorded invalid (run_realisation)
 };
 
 //! A caller's own reduction of every realisation, run in the worker thread as each record

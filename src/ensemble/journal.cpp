@@ -8,12 +8,15 @@
 #include <bit>
 #include <cerrno>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
 #include "core/error.hpp"
+#include "io/posix_file.hpp"
+#include "io/temporary_file.hpp"
 
 namespace stengmc {
 
@@ -211,22 +214,6 @@ RealisationRecord decode_payload(std::string_view payload, const std::string& pa
 
 // ---------------------------------------------------------------- file access
 
-//! Writes all of `bytes` at `offset`, retrying short writes and interruptions; false with
-//! errno set on failure.
-bool write_all(int fd, std::uint64_t offset, std::string_view bytes) {
-  while (!bytes.empty()) {
-    const ssize_t n = ::pwrite(fd, bytes.data(), bytes.size(), static_cast<off_t>(offset));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      if (n == 0) errno = EIO;
-      return false;
-    }
-    bytes.remove_prefix(static_cast<std::size_t>(n));
-    offset += static_cast<std::uint64_t>(n);
-  }
-  return true;
-}
-
 //! Reads exactly `size` bytes at `offset` (the caller checked the file is long enough).
 std::string read_at(int fd, std::uint64_t offset, std::uint64_t size, const std::string& path) {
   std::string bytes(size, '\0');
@@ -247,16 +234,32 @@ std::uint64_t little_endian(std::string_view bytes) {
   return v;
 }
 
-//! Makes a new directory entry durable. Best effort: a filesystem that cannot sync a
-//! directory only risks losing the whole journal in a power cut, which costs recomputation,
-//! never a wrong result.
-void sync_directory_of(const std::string& path) {
-  std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  if (folder.empty()) folder = std::filesystem::current_path();
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
+
+//! True when a whole frame whose checksum holds starts at `offset` of `body`.
+bool frame_at(std::string_view body, std::uint64_t offset) {
+  if (body.size() - offset < LENGTH_BYTES + CHECKSUM_BYTES) return false;
+  const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
+  if (length > MAX_PAYLOAD_BYTES || body.size() - offset - LENGTH_BYTES - CHECKSUM_BYTES < length) return false;
+  return fnv1a64(body.substr(offset + LENGTH_BYTES, length)) ==
+         little_endian(body.substr(offset + LENGTH_BYTES + length, CHECKSUM_BYTES));
+}
+
+//! The first offset >= `from` where a whole frame with a matching checksum begins. A cheap
+//! look at the payload's fixed fields (valid is 0 or 1, the failure text fits, the scalar
+//! count is this program's) spares the checksum at almost every offset; a random offset
+//! then passes the 64-bit checksum with probability 2^-64.
+std::optional<std::uint64_t> next_frame(std::string_view body, std::uint64_t from) {
+  constexpr std::uint64_t FIXED_PAYLOAD = 8 + 1 + 4 + 4;  // realisation, valid, failure length, scalar count
+  for (std::uint64_t offset = from; body.size() - offset >= LENGTH_BYTES + FIXED_PAYLOAD + CHECKSUM_BYTES; ++offset) {
+    const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
+    if (length < FIXED_PAYLOAD || body.size() - offset - LENGTH_BYTES - CHECKSUM_BYTES < length) continue;
+    const std::string_view payload = body.substr(offset + LENGTH_BYTES, length);
+    if (static_cast<unsigned char>(payload[8]) > 1) continue;
+    const std::uint64_t failure = little_endian(payload.substr(9, 4));
+    if (failure > length - FIXED_PAYLOAD || little_endian(payload.substr(13 + failure, 4)) != SCALAR_COUNT) continue;
+    if (frame_at(body, offset)) return offset;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -311,23 +314,13 @@ void Journal::create(const JournalIdentity& identity) {
   // Written and synced under a temporary name, then linked into place: the journal appears
   // with its whole header or not at all. link() (unlike rename) never replaces a journal
   // another run created meanwhile; that one is then opened and its identity checked.
-  const std::string temporary = path_ + "." + std::to_string(::getpid()) + ".tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) throw_system(temporary, "cannot create the journal (does the folder exist and is it writable?)", errno);
-  if (!write_all(fd, 0, header.bytes()) || ::fsync(fd) != 0) {
-    const int error = errno;
-    ::close(fd);
-    ::unlink(temporary.c_str());
-    throw_system(temporary, "cannot write the journal header", error);
-  }
-  ::close(fd);
-  if (::link(temporary.c_str(), path_.c_str()) != 0 && errno != EEXIST &&
-      ::rename(temporary.c_str(), path_.c_str()) != 0) {  // a filesystem without hard links
-    const int error = errno;
-    ::unlink(temporary.c_str());
-    throw_system(path_, "cannot create the journal", error);
-  }
-  ::unlink(temporary.c_str());
+  // The temporary is removed however this ends, also by a SIGTERM, and a stale one of a
+  // killed run by the next (io/temporary_file.hpp).
+  const TemporaryFile temporary(path_);
+  write_file_durably(temporary.path(), header.bytes(), path_, "the journal header");
+  if (::link(temporary.path().c_str(), path_.c_str()) != 0 && errno != EEXIST &&
+      ::rename(temporary.path().c_str(), path_.c_str()) != 0)  // a filesystem without hard links
+    throw_system(path_, "cannot create the journal", errno);
   sync_directory_of(path_);
 }
 
@@ -360,22 +353,30 @@ void Journal::load(const JournalIdentity& identity) {
                      "). The study (or the program) changed since the interrupted run, so its finished "
                      "realisations cannot be reused. " + how_to_start_afresh(path_));
 
-  // Records, up to the first one that is not whole and intact: that is where the run was
-  // killed (or the disk went bad), and nothing after it can be framed.
-  std::uint64_t offset = fixed + description_size;
-  while (file_size - offset >= LENGTH_BYTES) {
-    const std::uint64_t length = little_endian(read_at(fd_, offset, LENGTH_BYTES, path_));
-    if (length > MAX_PAYLOAD_BYTES || file_size - offset - LENGTH_BYTES < length + CHECKSUM_BYTES) break;
-    const std::string frame = read_at(fd_, offset + LENGTH_BYTES, length + CHECKSUM_BYTES, path_);
-    const std::string_view payload = std::string_view(frame).substr(0, length);
-    if (fnv1a64(payload) != little_endian(std::string_view(frame).substr(length))) break;
-    recovered_.push_back(decode_payload(payload, path_, recovered_.size()));
+  // Records. Every frame whose checksum holds is kept; damage (a bad disk block, a stray
+  // write) costs only the frames it touches: the scan resumes at the next offset where a
+  // whole frame with a matching checksum begins. Whatever follows the last good frame is a
+  // torn append (a kill mid-write) and is cut off, so appends continue after a whole record.
+  const std::uint64_t start = fixed + description_size;
+  const std::string body = read_at(fd_, start, file_size - start, path_);
+  std::uint64_t offset = 0, end_of_good = 0;
+  while (offset < body.size()) {
+    if (!frame_at(body, offset)) {
+      const auto next = next_frame(body, offset + 1);
+      if (!next) break;
+      offset = *next;
+    }
+    const std::uint64_t length = little_endian(std::string_view(body).substr(offset, LENGTH_BYTES));
+    recovered_.push_back(decode_payload(std::string_view(body).substr(offset + LENGTH_BYTES, length), path_,
+                                        recovered_.size()));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
+    end_of_good = offset;
   }
   // Cut only after every check passed, so a refused journal is left as it was.
-  if (offset < file_size && (::ftruncate(fd_, static_cast<off_t>(offset)) != 0 || ::fsync(fd_) != 0))
+  const std::uint64_t end = start + end_of_good;
+  if (end < file_size && (::ftruncate(fd_, static_cast<off_t>(end)) != 0 || ::fsync(fd_) != 0))
     throw_system(path_, "cannot cut the torn record off the journal", errno);
-  size_ = offset;
+  size_ = end;
 }
 
 void Journal::append(const RealisationRecord& record) {

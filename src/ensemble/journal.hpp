@@ -20,14 +20,16 @@
 //!            | u64 n | n doubles measured_voltage_v
 //!            | u32 extras | per extra: u32 n | n bytes name | u64 m | m doubles values
 //!
-//! Recovery: records are read in file order up to the first one that is short, declares
-//! more than 1 GiB, or fails its checksum. That record and everything after it are cut off
-//! (the file is truncated): once one frame is wrong, the lengths that follow cannot be
-//! trusted. Appends only ever write at the end, so a kill can only tear the last record.
-//! A record that passes its checksum but does not parse as this program's record (other
-//! SCALAR_COUNT or ASPERITY_COLUMN_COUNT) means the format changed: an InputError, never
-//! silent loss. The header is written to a temporary file and linked into place, so a
-//! journal either does not exist or has a complete header.
+//! Recovery: every record whose own checksum holds is kept. Damage inside the file (a bad
+//! block, a stray write) costs only the records it touches: reading resumes at the next
+//! offset where a whole frame with a matching checksum begins, and the damaged bytes stay
+//! where they are (they are skipped again at the next opening). Whatever follows the last
+//! good record is a torn append and is cut off (the file is truncated there); appends only
+//! ever write at the end, so a kill can only tear the last record. A record that passes its
+//! checksum but does not parse as this program's record (other SCALAR_COUNT or
+//! ASPERITY_COLUMN_COUNT) means the format changed: an InputError, never silent loss. The
+//! header is written to a temporary file and linked into place, so a journal either does
+//! not exist or has a complete header; a damaged header is refused, not guessed at.
 //!
 //! One run at a time: the file is locked (flock) while open; a second Journal on the same
 //! file throws Error. Records are not de-duplicated: the caller skips recovered

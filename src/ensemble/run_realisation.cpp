@@ -1,6 +1,9 @@
 #include "ensemble/run_realisation.hpp"
 
 #include <algorithm>
+#include <new>
+#include <stdexcept>
+#include <string>
 
 #include "core/error.hpp"
 #include "core/random_stream.hpp"
@@ -94,14 +97,26 @@ Study with_draws(const Study& base, std::uint64_t realisation, RealisationRecord
 
 }  // namespace
 
-RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces) {
+RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces,
+                                  const WorkLimits& limits) {
   RealisationRecord record;
   record.realisation = realisation;
   try {
     const bool drawn = base.ensemble && !base.ensemble->draws.empty();
     const Study study = drawn ? study_for_realisation(with_draws(base, realisation, record), realisation)
                               : study_for_realisation(base, realisation);
-    const RunResult result = run_study(study, RunOptions{.show_progress = false});
+    // Now that its asperities are drawn, the realisation's own work: over a limit, it is an
+    // invalid realisation (the study's share of it was checked for every grid point first).
+    const std::string exceeded = exceeded_limit(estimate_run(study, -1.0, false), limits);
+    if (!exceeded.empty()) {
+      record.valid = false;
+      record.failure = std::string(WORK_LIMIT_FAILURE) + "with " + std::to_string(study.asperities.size()) +
+                       " asperities the realisation " + exceeded;
+      record.scalar(Scalar::summit_count) = static_cast<double>(study.population.height_m.size());
+      record.scalar(Scalar::asperity_count) = static_cast<double>(study.asperities.size());
+      return record;
+    }
+    const RunResult result = run_study(study, RunOptions{.show_progress = false, .limits = limits});
     const RunSummary summary = summarise(study, result);
     fill_scalars(study, result, summary, record);
     fill_asperities(study, result, summary, record);
@@ -122,6 +137,17 @@ RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, 
     record.realisation = realisation;
     record.valid = false;
     record.failure = e.what();
+  } catch (const Error&) {
+    throw;  // the study's (InputError) or the system's: every realisation would fail alike
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A numerical library's own exception (a Boost root finder's "do not bracket") is this
+    // realisation's failure: recorded, never the end of the ensemble.
+    record = RealisationRecord{};
+    record.realisation = realisation;
+    record.valid = false;
+    record.failure = std::string("unexpected failure (please report it with the study): ") + e.what();
   }
   return record;
 }

@@ -23,8 +23,8 @@ void check_analysis_interval(const Study& study) {
 
 //! Records stay in memory until the output is written (~600 bytes each plus ~100 per
 //! asperity, plus the traces kept): refuse a study that cannot fit before it runs.
-void check_memory(const std::vector<GridPoint>& grid) {
-  constexpr double LIMIT_BYTES = 8e9;
+void check_memory(const std::vector<GridPoint>& grid, const WorkLimits& limits) {
+  const double LIMIT_BYTES = limits.memory_bytes;
   double bytes = 0.0;
   for (const GridPoint& point : grid) {
     const Study& s = point.study;
@@ -40,12 +40,23 @@ void check_memory(const std::vector<GridPoint>& grid) {
     throw InputError(grid.front().study.file + ": [ensemble] realisations = " +
                      std::to_string(grid.front().study.ensemble->realisations) + " over " + std::to_string(grid.size()) +
                      " grid point(s) would keep ~" + format_number(bytes / 1e9) + " GB of records in memory (limit " +
-                     format_number(LIMIT_BYTES / 1e9) + " GB): run fewer realisations per study");
+                     format_number(LIMIT_BYTES / 1e9) + " GB): run fewer realisations per study, or raise the limit "
+                     "with --max-memory-gb");
 }
 
 }  // namespace
 
-std::vector<GridPoint> prepare_grid(const Study& base) {
+//! What every realisation of `study` costs at least: a random surface may draw a single
+//! asperity, a fixed list always has its own.
+void check_point_work(const Study& study, const WorkLimits& limits) {
+  const double asperities =
+      study.surface->random_surface() ? 1.0 : static_cast<double>(study.surface->sample(0, 0).asperities.size());
+  check_work(estimate_run(study, asperities, false), limits,
+             study.file + ": every realisation (at least " + format_number(asperities) + " asperit" +
+                 (asperities == 1.0 ? "y" : "ies") + ")");
+}
+
+std::vector<GridPoint> prepare_grid(const Study& base, const WorkLimits& limits) {
   const EnsembleSettings& settings = *base.ensemble;
   std::vector<GridPoint> grid(settings.grid_size());
   for (std::size_t g = 0; g < grid.size(); ++g) {
@@ -53,6 +64,7 @@ std::vector<GridPoint> prepare_grid(const Study& base) {
     for (std::size_t a = 0; a < values.size(); ++a) grid[g].overrides.push_back({settings.sweep[a].parameter, values[a]});
     try {
       grid[g].study = grid[g].overrides.empty() ? base : read_study(base.file, std::nullopt, grid[g].overrides);
+      check_point_work(grid[g].study, limits);  // before anything the size of the run is allocated
       check_analysis_interval(grid[g].study);
     } catch (const InputError& e) {
       if (grid[g].overrides.empty()) throw;  // no sweep: the message already names the file
@@ -60,7 +72,7 @@ std::vector<GridPoint> prepare_grid(const Study& base) {
                        describe_grid_point(grid[g]) + "): " + e.what());
     }
   }
-  check_memory(grid);
+  check_memory(grid, limits);
   return grid;
 }
 

@@ -18,8 +18,10 @@ struct GridPoint {
 };
 
 //! Reads the study at every grid point of `base`'s sweep (a single point without one), so
-//! a value that breaks the study is reported before anything runs, naming the point.
-std::vector<GridPoint> prepare_grid(const Study& base);
+//! a value that breaks the study is reported before anything runs, naming the point. So
+//! is a point whose work no realisation could do within `limits` (with the fewest
+//! asperities it may draw: one for a random surface), and records that would not fit.
+std::vector<GridPoint> prepare_grid(const Study& base, const WorkLimits& limits = {});
 
 //! "param = value, ..." of a grid point, for messages; with `short_names`, each parameter
 //! by its last key only ("count = 4"), for tables.

@@ -5,14 +5,14 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/guarded_read.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/input_file.hpp"
+#include "io/run_file.hpp"
 
 namespace stengmc {
 
 namespace {
-
-// The run-file format this reader understands (io/run_file.hpp writes it).
-constexpr std::int64_t SUPPORTED_FORMAT_VERSION = 1;
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> fields;
@@ -23,22 +23,13 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-std::string trim(std::string text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  const auto last = text.find_last_not_of(" \t\r");
-  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
-}
-
 }  // namespace
 
-DisplacementInput read_displacement_hdf5(const std::string& path) {
+namespace {
+
+DisplacementInput read_hdf5(const std::string& path) {
   Hdf5Reader file(path);
-  // A stengmc file says what it is; refuse one written by a newer, incompatible format.
-  const std::string file_type = file.string_attribute("/", "file_type");
-  const auto version = file.integer_attribute("/", "format_version");
-  if (file_type.rfind("stengmc", 0) == 0 && version && *version > SUPPORTED_FORMAT_VERSION)
-    throw InputError(path + ": format_version " + std::to_string(*version) + " is newer than this stengmc reads (" +
-                     std::to_string(SUPPORTED_FORMAT_VERSION) + "); update stengmc");
+  check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
   DisplacementInput input;
   input.times_s = file.vector("/time");
   input.x_m = file.matrix("/asperity/x");
@@ -56,37 +47,39 @@ DisplacementInput read_displacement_hdf5(const std::string& path) {
   return input;
 }
 
+}  // namespace
+
+DisplacementInput read_displacement_hdf5(const std::string& path) {
+  check_input_file(path, "an HDF5 file");
+  read_in_child_first(path, [&] { (void)read_hdf5(path); });
+  return read_hdf5(path);
+}
+
 DisplacementInput read_displacement_csv(const std::string& path, const StengElement& element) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the file for reading");
+  std::ifstream in = open_input_file(path, "the displacement CSV file");
   std::string line;
   if (!std::getline(in, line)) throw InputError(path + ":1: empty file; expected a header `t,x1,...`");
   const auto header = split(line);
-  if (header.size() < 2 || trim(header[0]) != "t")
+  if (header.size() < 2 || trim_blanks(header[0]) != "t")
     throw InputError(path + ":1: header must be `t,x1,...,xn` (time in s, displacements in m)");
   DisplacementInput input;
   input.x_m.resize(header.size() - 1);
   std::size_t line_number = 1;
   while (std::getline(in, line)) {
     ++line_number;
-    if (trim(line).empty()) continue;
+    if (trim_blanks(line).empty()) continue;
     const auto fields = split(line);
     if (fields.size() != header.size())
       throw InputError(path + ":" + std::to_string(line_number) + ": " + std::to_string(fields.size()) +
                        " fields; the header has " + std::to_string(header.size()));
     for (std::size_t k = 0; k < fields.size(); ++k) {
-      const std::string text = trim(fields[k]);
-      std::size_t used = 0;
-      double value = 0.0;
-      try {
-        value = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != text.size() || !std::isfinite(value))
-        throw InputError(path + ":" + std::to_string(line_number) + ": column '" + trim(header[k]) + "' = '" + text +
-                         "' is not a finite number");
-      (k == 0 ? input.times_s : input.x_m[k - 1]).push_back(value);
+      const std::string text = trim_blanks(fields[k]);
+      std::string why;
+      const auto value = parse_number(text, &why);
+      if (!value)
+        throw InputError(path + ":" + std::to_string(line_number) + ": column '" + trim_blanks(header[k]) + "' = '" + text +
+                         "' " + (why == "is not a number" ? "is not a finite number" : why));
+      (k == 0 ? input.times_s : input.x_m[k - 1]).push_back(*value);
     }
   }
   input.elements.assign(input.x_m.size(), element);

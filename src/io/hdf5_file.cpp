@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +9,8 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
+#include "io/posix_file.hpp"
 
 namespace stengmc {
 
@@ -47,32 +48,42 @@ void check_finite(const std::string& path, std::span<const double> values) {
 
 // ---------------------------------------------------------------- Hdf5Writer
 
-Hdf5Writer::Hdf5Writer(std::string path)
-    // The process id keeps two runs writing the same output from clobbering each other's
-    // temporary file; whichever finishes last wins the rename, each file being complete.
-    : path_(std::move(path)), temporary_path_(path_ + "." + std::to_string(::getpid()) + ".tmp") {
+Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)) {
   H5::Exception::dontPrint();
   const auto parent = std::filesystem::path(path_).parent_path();
   std::error_code ignored;
   if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+  temporary_ = std::make_unique<TemporaryFile>(path_);
+  // The file is built in memory (HDF5's core driver, no backing store) and written out by
+  // commit() with plain checked writes. HDF5's own writes could fail inside H5Fclose (a
+  // flush on a full disk), and HDF5 1.10 then frees the file's structures but keeps its id:
+  // closing that id again, which H5File's destructor and the library's clean-up at exit
+  // both do, crashes (HDFGroup/hdf5 PR #2291, fixed in 1.14.1). In memory nothing fails
+  // but allocation, and commit() reports the system's reason for a failed write exactly.
   try {
-    file_ = H5::H5File(temporary_path_, H5F_ACC_TRUNC);
-  } catch (const H5::Exception&) {
-    throw Error(temporary_path_ + ": cannot create the output file (does the folder exist and is it writable?)");
+    H5::FileAccPropList access;
+    constexpr std::size_t GROWTH_BYTES = 1 << 20;
+    if (H5Pset_fapl_core(access.getId(), GROWTH_BYTES, false) < 0)
+      throw H5::PropListIException("H5Pset_fapl_core", "cannot select the core driver");
+    file_ = std::make_unique<H5::H5File>(temporary_->path(), H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access);
+  } catch (const H5::Exception& e) {
+    throw Error(path_ + ": cannot create the output file in memory: " + e.getDetailMsg());
   }
 }
 
-Hdf5Writer::~Hdf5Writer() {
-  if (committed_) return;
+Hdf5Writer::~Hdf5Writer() = default;  // the file in memory is dropped; temporary_ removes any on disk
+
+template <class Call>
+void Hdf5Writer::guarded(const std::string& what, Call call) {
   try {
-    file_.close();
-  } catch (...) {
+    call();
+  } catch (const H5::Exception& e) {
+    throw Error(path_ + ": " + what + ": " + e.getDetailMsg());
   }
-  std::remove(temporary_path_.c_str());
 }
 
 H5::Group Hdf5Writer::group_for(const std::string& dataset_path) {
-  H5::Group group = file_.openGroup("/");
+  H5::Group group = file_->openGroup("/");
   std::size_t start = 1;
   for (std::size_t slash = dataset_path.find('/', start); slash != std::string::npos;
        slash = dataset_path.find('/', start)) {
@@ -108,11 +119,11 @@ H5::DSetCreatPropList column_layout(hsize_t size) {
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units) {
   check_finite(path, values);
-  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+  guarded("cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
     group_for(path);
     H5::DataSet dataset =
-        file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims), column_layout(values.size()));
+        file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
     set_units(dataset, units);
   });
@@ -127,41 +138,41 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
     flat.insert(flat.end(), row.begin(), row.end());
   }
   check_finite(path, flat);
-  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+  guarded("cannot write " + path, [&] {
     const hsize_t dims[2] = {rows.size(), columns};
     group_for(path);
-    H5::DataSet dataset = file_.createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
+    H5::DataSet dataset = file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
     if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
     set_units(dataset, units);
   });
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units) {
-  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+  guarded("cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
     group_for(path);
     H5::DataSet dataset =
-        file_.createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims), column_layout(values.size()));
+        file_->createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
     set_units(dataset, units);
   });
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values, std::string_view units) {
-  guarded<Error>(temporary_path_, "cannot write " + path, [&] {
+  guarded("cannot write " + path, [&] {
     std::vector<const char*> pointers;
     pointers.reserve(values.size());
     for (const auto& v : values) pointers.push_back(v.c_str());
     const hsize_t dims[1] = {values.size()};
     group_for(path);
-    H5::DataSet dataset = file_.createDataSet(path, string_type(), H5::DataSpace(1, dims));
+    H5::DataSet dataset = file_->createDataSet(path, string_type(), H5::DataSpace(1, dims));
     if (!values.empty()) dataset.write(pointers.data(), string_type());
     set_units(dataset, units);
   });
 }
 
 void Hdf5Writer::group(const std::string& path) {
-  guarded<Error>(temporary_path_, "cannot create group " + path, [&] { group_for(path + "/"); });
+  guarded("cannot create group " + path, [&] { group_for(path + "/"); });
 }
 
 namespace {
@@ -194,8 +205,8 @@ void on_object(H5::H5File& file, const std::string& path, Write write) {
 }  // namespace
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::string_view value) {
-  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    on_object(file_, object, [&](H5::H5Object& target) {
+  guarded("cannot write attribute " + object + "@" + name, [&] {
+    on_object(*file_, object, [&](H5::H5Object& target) {
       H5::Attribute attribute = target.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
       attribute.write(string_type(), std::string(value));
     });
@@ -204,8 +215,8 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name, s
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, double value) {
   if (!std::isfinite(value)) throw Error("refusing to write a non-finite attribute " + object + "@" + name);
-  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    on_object(file_, object, [&](H5::H5Object& target) {
+  guarded("cannot write attribute " + object + "@" + name, [&] {
+    on_object(*file_, object, [&](H5::H5Object& target) {
       H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
       attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
     });
@@ -213,8 +224,8 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name, d
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::int64_t value) {
-  guarded<Error>(temporary_path_, "cannot write attribute " + object + "@" + name, [&] {
-    on_object(file_, object, [&](H5::H5Object& target) {
+  guarded("cannot write attribute " + object + "@" + name, [&] {
+    on_object(*file_, object, [&](H5::H5Object& target) {
       H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
       attribute.write(H5::PredType::NATIVE_INT64, &value);
     });
@@ -222,18 +233,28 @@ void Hdf5Writer::attribute(const std::string& object, const std::string& name, s
 }
 
 void Hdf5Writer::commit() {
-  guarded<Error>(temporary_path_, "cannot close the file", [&] { file_.close(); });
-  std::error_code error;
-  std::filesystem::rename(temporary_path_, path_, error);
-  if (error) throw Error(path_ + ": cannot move the finished output into place: " + error.message());
-  committed_ = true;
+  std::string image;
+  guarded("cannot finish the file", [&] {
+    const hid_t id = file_->getId();
+    if (H5Fflush(id, H5F_SCOPE_LOCAL) < 0) throw H5::FileIException("H5Fflush", "cannot flush the file");
+    const ssize_t size = H5Fget_file_image(id, nullptr, 0);
+    if (size < 0) throw H5::FileIException("H5Fget_file_image", "cannot take the file's image");
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(id, image.data(), image.size()) != size)
+      throw H5::FileIException("H5Fget_file_image", "cannot take the file's image");
+    file_->close();  // frees the in-memory file before the image is written out
+  });
+  file_.reset();
+  write_file_durably(temporary_->path(), image, path_);
+  temporary_->commit();
+  sync_directory_of(path_);
 }
 
 // ---------------------------------------------------------------- Hdf5Reader
 
 Hdf5Reader::Hdf5Reader(std::string path) : path_(std::move(path)) {
   H5::Exception::dontPrint();
-  if (!std::filesystem::exists(path_)) throw InputError(path_ + ": no such file");
+  check_input_file(path_, "an HDF5 file");
   try {
     file_ = H5::H5File(path_, H5F_ACC_RDONLY);
   } catch (const H5::Exception&) {
@@ -342,6 +363,17 @@ std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& obj
     attribute.read(H5::PredType::NATIVE_INT64, &value);
     return value;
   });
+}
+
+void check_format_version(const Hdf5Reader& file, const std::string& path, std::int64_t supported) {
+  if (file.string_attribute("/", "file_type").rfind("stengmc", 0) != 0) return;
+  const auto version = file.integer_attribute("/", "format_version");
+  if (!version) throw InputError(path + ": a stengmc file without an integer root attribute format_version (damaged?)");
+  if (*version < 1)
+    throw InputError(path + ": format_version " + std::to_string(*version) + " is not a valid version (>= 1); damaged file?");
+  if (*version > supported)
+    throw InputError(path + ": format_version " + std::to_string(*version) + " is newer than this stengmc reads (" +
+                     std::to_string(supported) + "); update stengmc");
 }
 
 }  // namespace stengmc

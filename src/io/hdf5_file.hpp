@@ -4,20 +4,24 @@
 #include <H5Cpp.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "io/temporary_file.hpp"
+
 namespace stengmc {
 
 //! Every HDF5 failure is rethrown as stengmc::Error (writer) or InputError (reader)
 //! naming the file and the object.
 //!
-//! Writes a new HDF5 file under a temporary name (`<path>.<pid>.tmp`); `commit()` renames it into place, and
-//! a writer destroyed before that removes the temporary file, so a killed or failed run
-//! never leaves a half-written result under the final name.
+//! Builds a new HDF5 file in memory; `commit()` writes it under a temporary name
+//! (io/temporary_file.hpp), fsyncs it and renames it into place, so a killed or failed run
+//! never leaves a half-written result under the final name, and a failed write (a full
+//! disk) is reported with the system's reason ("No space left on device").
 class Hdf5Writer {
  public:
   explicit Hdf5Writer(std::string path);
@@ -43,17 +47,20 @@ class Hdf5Writer {
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, std::int64_t value);
 
-  //! Closes the file and renames it to its final path.
+  //! Writes the file out and renames it to its final path. Memory: while it runs the file
+  //! exists twice (HDF5's image and its copy being written).
   void commit();
 
  private:
   H5::Group group_for(const std::string& dataset_path);
   void set_units(H5::DataSet& dataset, std::string_view units);
+  //! Runs HDF5 calls on the file; their failures become Error naming the output.
+  template <class Call>
+  void guarded(const std::string& what, Call call);
 
   std::string path_;
-  std::string temporary_path_;
-  H5::H5File file_;
-  bool committed_ = false;
+  std::unique_ptr<TemporaryFile> temporary_;
+  std::unique_ptr<H5::H5File> file_;
 };
 
 //! Reads datasets and attributes from an existing file, with errors naming the file.
@@ -77,5 +84,10 @@ class Hdf5Reader {
   std::string path_;
   H5::H5File file_;
 };
+
+//! A file whose root `file_type` is a stengmc one says which format it has: refuse one
+//! without a valid `format_version` (an integer >= 1) or with a newer one than this program
+//! reads, `supported` (InputError naming the file). Files of other programs are not checked.
+void check_format_version(const Hdf5Reader& file, const std::string& path, std::int64_t supported);
 
 }  // namespace stengmc

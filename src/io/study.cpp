@@ -18,13 +18,25 @@ std::string_view domain_policy_name(DomainPolicy policy) { return policy == Doma
 
 namespace {
 
-// Output arrays are n x M doubles, several of them; refuse studies that cannot fit.
-constexpr double MAX_SAMPLES_TIMES_ASPERITIES = 5e7;  // ~2 GB of traces
+// Friction coefficients at most (read_friction says why).
+constexpr double MAX_FRICTION_COEFFICIENT = 1e3;
+
+// Model 2's atan sharpness s at most [s/m] (read_model says why).
+constexpr double MAX_ATAN_SHARPNESS_S_PER_M = 1e10;
+
+// Drive periods a Model 1 run may span: omega t then still has ~1e-3 rad of precision.
+constexpr double MAX_DRIVE_PERIODS = 1e12;
 
 FrictionCoefficients read_friction(TomlTable& model) {
   FrictionCoefficients f;
   f.static_coefficient = model.positive("static_friction", f.static_coefficient);
   f.kinetic_coefficient = model.non_negative("kinetic_friction", f.kinetic_coefficient);
+  // No known pair of materials comes near 1e3 (clean metals in vacuum reach ~10); beyond
+  // it the forces only drive the integrators into their step budgets (found by the fuzz
+  // tests: mu_s = 2e9 ran Model 2 for a minute).
+  if (f.static_coefficient > MAX_FRICTION_COEFFICIENT)
+    model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be <= " +
+                                      format_number(MAX_FRICTION_COEFFICIENT));
   if (f.static_coefficient < f.kinetic_coefficient)
     model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be >= kinetic_friction = " +
                                       format_number(f.kinetic_coefficient));
@@ -56,6 +68,13 @@ void read_model(TomlTable& root, Study& study) {
     p.damping_n_s_per_m = model->non_negative("damping_n_s_per_m", p.damping_n_s_per_m);
     p.stribeck_decay_s_per_m = model->non_negative("stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
     p.atan_sharpness_s_per_m = model->positive("atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
+    // Sharper than a 0.1 nm/s transition is the sign function itself at double precision,
+    // and the stiff friction makes RODAS4 run into its step budget (1e11 took ~5x the
+    // steps of 1e3, 1e15 exhausted 5e7 steps: found by the fuzz tests).
+    if (p.atan_sharpness_s_per_m > MAX_ATAN_SHARPNESS_S_PER_M)
+      model->fail("atan_sharpness_s_per_m", "= " + format_number(p.atan_sharpness_s_per_m) + " must be <= " +
+                                                format_number(MAX_ATAN_SHARPNESS_S_PER_M) +
+                                                " (a friction transition narrower than 0.1 nm/s)");
     const std::string form = model->choice("friction_form", "consistent", {"consistent", "literal"});
     p.friction_form = form == "consistent" ? FrictionForm::consistent : FrictionForm::literal;
     p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
@@ -81,7 +100,12 @@ void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOver
       (std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name).lexically_normal();
   if (!std::filesystem::exists(path))
     surface->fail("file", "= \"" + name + "\": no such file (looked for " + path.string() + ")");
-  auto document = TomlDocument::from_file(path.string());
+  std::unique_ptr<TomlDocument> document;
+  try {
+    document = TomlDocument::from_file(path.string());
+  } catch (const InputError& e) {
+    surface->fail("file", "= \"" + name + "\": " + e.what());
+  }
   for (const ParameterOverride& o : surface_overrides) document->set_number(o.parameter.substr(8), o.value);
   TomlTable table = document->root();
   study.surface = std::make_shared<const Surface>(Surface::from_toml(table, path.parent_path()));
@@ -189,6 +213,7 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);
+    if (study.output_file.empty()) output->fail("file", "is empty: give the path of the HDF5 file to write, or leave the key out");
     if (output->has("traces")) {
       const auto names = output->string_list("traces", {"x", "v", "friction", "current", "charge", "x0"});
       auto wanted = [&](std::string_view name) { return std::find(names.begin(), names.end(), name) != names.end(); };
@@ -206,12 +231,22 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
   if (std::abs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals))
     root.fail("duration_s", "x sample_rate_hz = " + format_number(intervals) +
                                 " is not a whole number of sample intervals; adjust duration_s or sample_rate_hz");
+  // Model 1's phase omega t is a double: beyond ~1e12 drive periods it keeps no digits, and
+  // the slip-end scan's step (1/64 of a period) stops advancing time (the run never ends).
+  if (study.model == ModelKind::model1) {
+    const double periods = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI) * study.duration_s;
+    if (!(periods <= MAX_DRIVE_PERIODS))
+      root.table("model")->fail("drive_frequency_hz",
+                                "= " + format_number(study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI)) +
+                                    " Hz over duration_s = " + format_number(study.duration_s) + " s is " +
+                                    format_number(periods) + " drive periods; the drive phase loses its precision "
+                                    "beyond " + format_number(MAX_DRIVE_PERIODS));
+  }
   const double samples = std::round(intervals) + 1.0;
   if (samples < 2.0)
     root.fail("duration_s", "x sample_rate_hz gives fewer than 2 samples; lengthen duration_s or raise sample_rate_hz");
-  if (samples * static_cast<double>(study.asperities.size()) > MAX_SAMPLES_TIMES_ASPERITIES)
-    root.fail("duration_s", "x sample_rate_hz x asperities = " + format_number(samples * static_cast<double>(study.asperities.size())) +
-                                " samples: above the limit of " + format_number(MAX_SAMPLES_TIMES_ASPERITIES) + " for one run");
+  // What the run will cost is estimated, against limits the command line sets, by every
+  // command before it starts (pipeline/work_estimate.hpp), not here.
   return study;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 
 namespace stengmc {
 
@@ -26,11 +27,7 @@ TomlDocument::TomlDocument(toml::table table, std::string file, std::string text
     : table_(std::move(table)), file_(std::move(file)), text_(std::move(text)) {}
 
 std::unique_ptr<TomlDocument> TomlDocument::from_file(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open the file for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return from_string(buffer.str(), file);
+  return from_string(read_text_file(file, "a TOML file (study, surface or settings)"), file);
 }
 
 std::unique_ptr<TomlDocument> TomlDocument::from_string(const std::string& text, const std::string& file) {

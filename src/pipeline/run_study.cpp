@@ -138,6 +138,9 @@ void add_measurement_noise(const Study& study, RunResult& result) {
 }  // namespace
 
 RunResult run_study(const Study& study, const RunOptions& options) {
+  // Before any allocation: one absurd value (a drive at 1e300 Hz) must not start a run that
+  // cannot finish or fit. Commands check the same estimate, with their output, earlier.
+  check_work(estimate_run(study, -1.0, false), options.limits, study.file + ": the run");
   RunResult result;
   const TimeGrid grid = study.grid();
   result.times_s = grid.times();

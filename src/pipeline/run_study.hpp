@@ -8,6 +8,7 @@
 #include "circuit/circuit_solver.hpp"
 #include "io/study.hpp"
 #include "pipeline/analyse_spectra.hpp"
+#include "pipeline/work_estimate.hpp"
 #include "surface/validity.hpp"
 #include "tribology/events.hpp"
 #include "tribology/trajectory.hpp"
@@ -34,9 +35,12 @@ struct RunResult {
 
 struct RunOptions {
   bool show_progress = true;  //!< progress bars on stderr (an ensemble runs many at once: off)
+  WorkLimits limits;          //!< the run is refused (InputError) when its estimate exceeds these
 };
 
-//! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`.
+//! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`,
+//! InputError before anything runs when its work estimate (pipeline/work_estimate.hpp)
+//! exceeds the limits.
 RunResult run_study(const Study& study, const RunOptions& options = {});
 
 }  // namespace stengmc

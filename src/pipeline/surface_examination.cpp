@@ -102,9 +102,17 @@ TargetLaw target_law(const Distribution& law) {
   const double lo = std::max(law.lower(), law.quantile(1e-4));
   const double hi = std::min(law.upper(), law.quantile(1.0 - 1e-4));
   for (std::size_t i = 0; i < TARGET_POINTS; ++i) {
-    const double x = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(TARGET_POINTS - 1);
+    // Weighted where hi - lo overflows (a law as wide as a double), as before elsewhere.
+    const double u = static_cast<double>(i) / static_cast<double>(TARGET_POINTS - 1);
+    const double x = std::isfinite(hi - lo)
+                         ? lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(TARGET_POINTS - 1)
+                         : (1.0 - u) * lo + u * hi;
+    const double density = law.pdf(x);
+    // A law too narrow or too wide for its density to be a double (std = 1e-300 squares to
+    // 0) has no curve to draw there; the figure shows what is left, the samples are exact.
+    if (!std::isfinite(x) || !std::isfinite(density)) continue;
     t.value.push_back(x);
-    t.density.push_back(law.pdf(x));
+    t.density.push_back(density);
   }
   return t;
 }

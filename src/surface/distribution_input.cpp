@@ -1,5 +1,6 @@
 // Reading distributions from surface files: the TOML table and empirical histograms.
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -7,6 +8,7 @@
 
 #include "core/format.hpp"
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "io/toml_reader.hpp"
 #include "surface/distribution.hpp"
 
@@ -37,17 +39,15 @@ std::vector<double> read_values(TomlTable& t, std::string_view key) {
 bool parse_double(std::string_view text, double& out) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  // from_chars: locale-independent, unlike strtod.
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc() && end == text.data() + text.size() && !text.empty() && std::isfinite(out);
+  const auto value = parse_number(text);
+  if (value) out = *value;
+  return value.has_value();
 }
 
 }  // namespace
 
 std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot open the histogram file for reading");
+  std::istringstream in(read_text_file(file.string(), "the histogram file"));
   std::vector<Bin> bins;
   std::string line;
   bool first_content = true;
@@ -68,6 +68,9 @@ std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesyste
     if (header) continue;
     if (!numeric) throw InputError(where + "expected three numbers 'lower,upper,weight', got '" + line + "'");
     if (!(b.upper > b.lower)) throw InputError(where + "upper = " + format_number(b.upper) + " must be > lower = " + format_number(b.lower));
+    if (!std::isfinite(b.upper - b.lower))
+      throw InputError(where + "the bin [" + format_number(b.lower) + ", " + format_number(b.upper) +
+                       ") is wider than a double can hold (its width overflows)");
     if (b.weight < 0.0) throw InputError(where + "weight = " + format_number(b.weight) + " must be >= 0");
     if (!bins.empty() && b.lower < bins.back().upper)
       throw InputError(where + "lower = " + format_number(b.lower) + " overlaps the previous bin, which ends at " +
@@ -78,6 +81,7 @@ std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesyste
   double total = 0.0;
   for (const Bin& b : bins) total += b.weight;
   if (!(total > 0.0)) throw InputError(file.string() + ": the histogram's weights sum to zero");
+  if (!std::isfinite(total)) throw InputError(file.string() + ": the histogram's weights sum beyond a double; scale them down");
   return bins;
 }
 

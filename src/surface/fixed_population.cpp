@@ -1,6 +1,9 @@
 #include "surface/fixed_population.hpp"
 
+#include <cmath>
 #include <optional>
+
+#include "tribology/model1.hpp"
 
 namespace stengmc {
 
@@ -16,6 +19,9 @@ Asperity read_asperity(TomlTable& table, const Asperity& base) {
   a.normal_load_n = table.non_negative("normal_load_n", base.normal_load_n);
   a.height_m = table.non_negative("height_m", base.height_m);
   a.drive_phase_rad = table.number("drive_phase_rad", base.drive_phase_rad);
+  if (!(std::abs(a.drive_phase_rad) <= MAX_DRIVE_PHASE_RAD))
+    table.fail("drive_phase_rad", "= " + std::to_string(a.drive_phase_rad) + " must lie within +-1e6 rad (an angle: "
+                                  "omega t + phi would keep no digits of omega t)");
   a.initial_displacement_m = table.number("initial_displacement_m", base.initial_displacement_m);
   a.initial_velocity_m_per_s = table.number("initial_velocity_m_per_s", base.initial_velocity_m_per_s);
   a.element.charge_density_c_per_m2 = table.number("charge_density_c_per_m2", base.element.charge_density_c_per_m2);

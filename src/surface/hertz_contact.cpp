@@ -88,6 +88,13 @@ double hertz_load(double interference_m, double summit_radius_m, double effectiv
   return (4.0 / 3.0) * effective_modulus_pa * std::sqrt(summit_radius_m) * interference_m * std::sqrt(interference_m);
 }
 
+double hertz_interference_for_load(double load_n, double summit_radius_m, double effective_modulus_pa) {
+  // In logarithms: 3 W / (4 E* sqrt(R_s)) may itself overflow or underflow where its 2/3
+  // power would not.
+  const double log_ratio = std::log(3.0 * load_n / 4.0) - std::log(effective_modulus_pa) - 0.5 * std::log(summit_radius_m);
+  return std::exp(2.0 / 3.0 * log_ratio);
+}
+
 HertzContact hertz_contact_at_separation(const std::vector<double>& heights_m, double summit_radius_m,
                                          double effective_modulus_pa, double separation_m) {
   validate_inputs(heights_m, summit_radius_m, effective_modulus_pa);
@@ -125,10 +132,17 @@ HertzContact solve_hertz_contact(const std::vector<double>& heights_m, double su
     // (it returns on f(c) == 0); the margin of 10 keeps the verified error below 1e-12.
     return std::abs(r) <= 0.1 * HERTZ_LOAD_RELATIVE_TOLERANCE * w ? 0.0 : r;
   };
+  // (The power form, not hertz_interference_for_load: it is exact enough, and the numbers
+  // stay those of earlier versions; surfaces are checked to keep it in range.)
   double u_hi = std::cbrt(std::pow(3.0 * w / (4.0 * effective_modulus_pa * std::sqrt(summit_radius_m)), 2.0));
   double f_hi = f(u_hi);
   for (int k = 0; f_hi < 0.0 && k < 60; ++k) f_hi = f(u_hi *= 2.0);
-  if (f_hi < 0.0) throw ModelError("hertz contact: could not bracket the load W = " + format_number(w) + " N");
+  // A sum of loads beyond a double (inf, or NaN from inf - inf) would make TOMS 748 fail
+  // with a raw "do not bracket the root".
+  if (!(f_hi >= 0.0) || !std::isfinite(f_hi) || !(u_hi > 0.0) || !std::isfinite(u_hi))
+    throw ModelError("hertz contact: could not bracket the load W = " + format_number(w) + " N (E* = " +
+                     format_number(effective_modulus_pa) + " Pa, R_s = " + format_number(summit_radius_m) +
+                     " m): the summits' loads are beyond what a double can sum");
 
   double u = u_hi;
   std::uintmax_t iterations = 200;

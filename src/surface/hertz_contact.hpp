@@ -27,6 +27,17 @@ inline constexpr double HERTZ_LOAD_RELATIVE_TOLERANCE = 1e-12;
 //! Hertz load of one summit, (4/3) E* R_s^(1/2) delta^(3/2) [N] (0 for delta <= 0).
 double hertz_load(double interference_m, double summit_radius_m, double effective_modulus_pa);
 
+//! The interference one summit needs to carry `load_n` alone, (3 W / (4 E* sqrt(R_s)))^(2/3)
+//! [m], computed without overflow or underflow in between (inf or 0 when the result itself
+//! is beyond a double).
+double hertz_interference_for_load(double load_n, double summit_radius_m, double effective_modulus_pa);
+
+//! Interferences the load solve works with [m]: far beyond any physical contact on both
+//! sides, and far inside a double's range so loads, areas and sums of thousands of summits
+//! stay finite. A surface whose nominal load needs more or less is refused when read.
+inline constexpr double MIN_HERTZ_INTERFERENCE_M = 1e-50;
+inline constexpr double MAX_HERTZ_INTERFERENCE_M = 1e50;
+
 //! The population at a given separation d (no solve). Inputs are validated as below.
 HertzContact hertz_contact_at_separation(const std::vector<double>& heights_m, double summit_radius_m,
                                          double effective_modulus_pa, double separation_m);

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "core/format.hpp"
+#include "surface/hertz_contact.hpp"
+#include "tribology/model1.hpp"
 #include "surface/random_surface.hpp"
 
 namespace stengmc {
@@ -139,6 +141,18 @@ void read_load(TomlTable& root, RandomSurface& s) {
   if (!(s.nominal_load_n > 0.0) || !std::isfinite(s.nominal_load_n))
     t.fail("nominal_load_n", "= " + format_number(s.nominal_load_n) +
                                  ": no separation can carry it; an adhesionless flat carries only a finite load W > 0");
+  // The load solve brackets the flat's depth between 0 and the interference the tallest
+  // summit alone would need; loads, moduli or radii that put it beyond any physical scale
+  // also overflow or underflow the solve's arithmetic, so they are refused here by name.
+  const double e_star = s.materials->effective_modulus_pa();
+  const double depth = hertz_interference_for_load(s.nominal_load_n, s.materials->summit_radius_m, e_star);
+  if (!(depth >= MIN_HERTZ_INTERFERENCE_M && depth <= MAX_HERTZ_INTERFERENCE_M))
+    t.fail("nominal_load_n", "= " + format_number(s.nominal_load_n) + " N with E* = " + format_number(e_star) +
+                                 " Pa and R_s = " + format_number(s.materials->summit_radius_m) +
+                                 " m: the tallest summit alone would need an interference of " + format_number(depth) +
+                                 " m to carry it; the contact solve works with interferences in [" +
+                                 format_number(MIN_HERTZ_INTERFERENCE_M) + ", " + format_number(MAX_HERTZ_INTERFERENCE_M) +
+                                 "] m (check the load, the moduli and summit_radius_m)");
 }
 
 void read_interaction(TomlTable& root, RandomSurface& s) {
@@ -197,6 +211,7 @@ void read_drive(TomlTable& root, RandomSurface& s) {
   s.phase_rule = rule == "fixed" ? PhaseRule::fixed : PhaseRule::uniform;
   if (s.phase_rule == PhaseRule::fixed) s.phase_rad = t->number("phase_rad", s.phase_rad);
   else if (t->has("phase_rad")) t->fail("phase_rad", "is not used with phase = \"uniform\"");
+  if (!(std::abs(s.phase_rad) <= MAX_DRIVE_PHASE_RAD)) t->fail("phase_rad", "must lie within +-1e6 rad (an angle)");
 }
 
 }  // namespace

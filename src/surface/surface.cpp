@@ -2,6 +2,11 @@
 
 #include "surface/fixed_population.hpp"
 
+#include <new>
+#include <stdexcept>
+
+#include "core/error.hpp"
+
 namespace stengmc {
 
 Surface Surface::from_toml(TomlTable& table, const std::filesystem::path& base_dir) {
@@ -29,8 +34,30 @@ std::string Surface::auxiliary_inputs() const {
   return out;
 }
 
+std::vector<std::string> Surface::auxiliary_input_files() const {
+  std::vector<std::string> files;
+  if (!random_) return files;
+  for (const Distribution* law : {&random_->heights, random_->stiffness ? &*random_->stiffness : nullptr})
+    if (law && !law->source().empty()) files.push_back(law->source().substr(0, law->source().find('\n')));
+  return files;
+}
+
 Population Surface::sample(std::uint64_t seed, std::uint64_t realisation) const {
-  if (random_) return sample_population(*random_, seed, realisation);
+  if (random_) {
+    try {
+      return sample_population(*random_, seed, realisation);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      // A numerical library's own exception (Boost's root finders, a distribution's domain
+      // check) belongs to this realisation: a ModelError, which an ensemble records as an
+      // invalid realisation with the reason instead of stopping.
+      throw ModelError("realisation " + std::to_string(realisation) + " (seed " + std::to_string(seed) +
+                       ") could not be sampled: " + e.what());
+    }
+  }
   Population p;
   p.realisation = realisation;
   p.asperities = list_;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "io/toml_reader.hpp"
@@ -26,6 +27,8 @@ class Surface {
   //! Every file the surface read besides its own (empirical histograms), each as
   //! "<path>\n<text>", for provenance and resume checks; empty for most surfaces.
   [[nodiscard]] std::string auxiliary_inputs() const;
+  //! The paths of those files (an output must never replace one).
+  [[nodiscard]] std::vector<std::string> auxiliary_input_files() const;
 
   //! The random description, or nullptr for a fixed list.
   [[nodiscard]] const RandomSurface* random_surface() const { return random_ ? &*random_ : nullptr; }

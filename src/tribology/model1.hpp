@@ -25,6 +25,10 @@ struct Model1Params {
   std::size_t euler_cromer_substeps = 1;  //!< euler_cromer steps per output step
 };
 
+//! Largest |drive phase| [rad]: omega t + phi is a double, and a phase of 1e15 rad keeps no
+//! digits of omega t (the fuzz tests found the exact solver looping on one).
+inline constexpr double MAX_DRIVE_PHASE_RAD = 1e6;
+
 //! Imposed displacement x0(t) = A sin(omega t + phi) [m].
 double imposed_displacement(const Model1Params& params, const Asperity& asperity, double t_s);
 

@@ -51,8 +51,8 @@ void validate_model1(const Asperity& asperity, const Model1Params& params, const
       !std::isfinite(params.drive_angular_frequency_rad_per_s))
     reject("drive_angular_frequency_rad_per_s", params.drive_angular_frequency_rad_per_s,
            "finite and > 0");
-  if (!std::isfinite(asperity.drive_phase_rad))
-    reject("drive_phase_rad", asperity.drive_phase_rad, "finite");
+  if (!(std::abs(asperity.drive_phase_rad) <= MAX_DRIVE_PHASE_RAD))
+    reject("drive_phase_rad", asperity.drive_phase_rad, "within +-1e6 rad");
   if (!std::isfinite(asperity.initial_displacement_m))
     reject("initial_displacement_m", asperity.initial_displacement_m, "finite");
   if (!std::isfinite(asperity.initial_velocity_m_per_s))

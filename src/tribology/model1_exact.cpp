@@ -274,7 +274,16 @@ Trajectory solve_model1_exact(const Asperity& asperity, const Model1Params& para
   // A slip from rest always lasts a positive time; this only guards against a chain of
   // zero-length phases that rounding might still produce at a near-tangent crossing.
   std::size_t stalled = 0;
+  // x' changes sign at most twice per period of the faster of drive and natural
+  // oscillation: a chain far longer than that has lost its arithmetic (phases that advance
+  // by an ulp) and would never end.
+  const double max_phases = 8.0 * t_end * std::max(pr.osc.omega, pr.osc.w0) / (2.0 * PI) + 1000.0;
   for (;;) {
+    if (static_cast<double>(phases.size()) > max_phases)
+      throw ModelError("Model 1 exact solver: more than " + std::to_string(static_cast<long long>(max_phases)) +
+                       " stick/slip transitions by t = " + std::to_string(phases.back().t0) +
+                       " s, where at most two per period are possible; the phases no longer advance (check the drive "
+                       "and the asperity's parameters)");
     const Phase current = phases.back();
     double t_next = INF;
     Phase next;

@@ -1,6 +1,6 @@
 // The journal of finished realisations (ensemble/journal): records come back bitwise after
-// reopening; a torn or corrupt tail is cut back to the last whole record and appending
-// carries on after it; a journal of another study, another record format or no journal at
+// reopening; a torn tail is cut back to the last whole record and appending carries on
+// after it; a corrupt record costs only itself; a journal of another study, another record format or no journal at
 // all is refused (and left untouched) with a message saying how to start afresh;
 // concurrent appends never interleave; remove() deletes the file.
 //
@@ -211,41 +211,74 @@ TEST(Journal, AProcessKilledWhileAppendingLeavesAResumableJournal) {
   expect_bitwise_equal(make_record(count), resumed.recovered().back());
 }
 
-// Everything after a corrupt record is dropped with it: once one frame is wrong the lengths
-// that follow cannot be trusted (journal.hpp, "Recovery").
-TEST(Journal, ACorruptRecordIsCutWithEverythingAfterIt) {
+// A corrupt record costs only itself: every other record whose own checksum holds is kept,
+// wherever the damage is (journal.hpp, "Recovery"). Before, one bad byte in the first
+// record threw away every finished realisation after it.
+TEST(Journal, ACorruptRecordLosesOnlyItself) {
   testing::ScratchDir scratch("journal-corrupt");
   const std::string path = scratch.file("run.journal");
   const auto ends = write_journal(path, 5);
   const std::string whole = read_bytes(path);
 
-  const auto expect_first_two = [&](const std::string& damaged, const std::string& what) {
+  const auto expect_all_but = [&](const std::string& damaged, std::uint64_t lost, const std::string& what) {
     SCOPED_TRACE(what);
     write_bytes(path, damaged);
+    {
+      Journal journal(path, IDENTITY);
+      ASSERT_EQ(journal.recovered().size(), 4u);
+      std::uint64_t k = 0;
+      for (std::uint64_t id = 0; id < 5; ++id)
+        if (id != lost) expect_bitwise_equal(make_record(id), journal.recovered()[k++]);
+      EXPECT_EQ(std::filesystem::file_size(path), damaged.size());  // nothing whole was cut
+      journal.append(make_record(lost));                              // the lost one, run again
+    }
+    Journal reopened(path, IDENTITY);
+    ASSERT_EQ(reopened.recovered().size(), 5u);
+    expect_bitwise_equal(make_record(lost), reopened.recovered().back());
+  };
+  const auto with_length = [&](std::uint64_t record, std::uint32_t length) {
+    std::string damaged = whole;
+    for (int i = 0; i < 4; ++i) damaged[ends[record] + i] = static_cast<char>(length >> (8 * i));
+    return damaged;
+  };
+  for (const std::uint64_t record : {0u, 2u}) {  // the first record, and one in the middle
+    // Each byte of its payload, one at a time (a bit flip the checksum must catch).
+    for (std::uint64_t at = ends[record] + 4; at < ends[record + 1] - 8; ++at) {
+      std::string damaged = whole;
+      damaged[at] = static_cast<char>(damaged[at] ^ 0x10);
+      expect_all_but(damaged, record, "record " + std::to_string(record) + " payload byte " + std::to_string(at - ends[record] - 4));
+    }
+    // Its checksum, and its length prefix: absurd (> 1 GiB), past the end of the file, one short.
+    std::string damaged = whole;
+    damaged[ends[record + 1] - 1] = static_cast<char>(damaged[ends[record + 1] - 1] ^ 0x01);
+    expect_all_but(damaged, record, "checksum flipped");
+    expect_all_but(with_length(record, 0xffffffffu), record, "length 4 GiB");
+    expect_all_but(with_length(record, static_cast<std::uint32_t>(whole.size())), record, "length past the end");
+    expect_all_but(with_length(record, static_cast<std::uint32_t>(ends[record + 1] - ends[record] - 13)), record,
+                   "length one short");
+  }
+}
+
+// What follows the last whole record is a torn append (a kill mid-write): it is cut, even
+// after a damaged record, and appending carries on from there.
+TEST(Journal, ATornTailAfterACorruptRecordIsCut) {
+  testing::ScratchDir scratch("journal-corrupt-torn");
+  const std::string path = scratch.file("run.journal");
+  const auto ends = write_journal(path, 4);
+  std::string damaged = read_bytes(path).substr(0, ends[4] - 5);  // record 3 torn
+  damaged[ends[1] + 20] = static_cast<char>(damaged[ends[1] + 20] ^ 0x40);  // record 1 corrupt
+  write_bytes(path, damaged);
+  {
     Journal journal(path, IDENTITY);
     ASSERT_EQ(journal.recovered().size(), 2u);
     expect_bitwise_equal(make_record(0), journal.recovered()[0]);
-    expect_bitwise_equal(make_record(1), journal.recovered()[1]);
-    EXPECT_EQ(std::filesystem::file_size(path), ends[2]);
-  };
-  // Each byte of record 3's payload, one at a time (a bit flip the checksum must catch).
-  for (std::uint64_t at = ends[2] + 4; at < ends[3] - 8; ++at) {
-    std::string damaged = whole;
-    damaged[at] = static_cast<char>(damaged[at] ^ 0x10);
-    expect_first_two(damaged, "payload byte " + std::to_string(at - ends[2] - 4) + " flipped");
+    expect_bitwise_equal(make_record(2), journal.recovered()[1]);
+    EXPECT_EQ(std::filesystem::file_size(path), ends[3]);
+    journal.append(make_record(7));
   }
-  // Its checksum, and its length prefix: absurd (> 1 GiB), past the end of the file, one short.
-  const auto with_length = [&](std::uint32_t length) {
-    std::string damaged = whole;
-    for (int i = 0; i < 4; ++i) damaged[ends[2] + i] = static_cast<char>(length >> (8 * i));
-    return damaged;
-  };
-  std::string damaged = whole;
-  damaged[ends[3] - 1] = static_cast<char>(damaged[ends[3] - 1] ^ 0x01);
-  expect_first_two(damaged, "checksum flipped");
-  expect_first_two(with_length(0xffffffffu), "length 4 GiB");
-  expect_first_two(with_length(static_cast<std::uint32_t>(whole.size())), "length past the end");
-  expect_first_two(with_length(static_cast<std::uint32_t>(ends[3] - ends[2] - 13)), "length one short");
+  Journal reopened(path, IDENTITY);
+  ASSERT_EQ(reopened.recovered().size(), 3u);
+  expect_bitwise_equal(make_record(7), reopened.recovered()[2]);
 }
 
 TEST(Journal, AJournalOfAnotherStudyIsRefusedAndLeftAsItWas) {

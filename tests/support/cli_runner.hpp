@@ -34,9 +34,11 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-inline CliResult run_cli(const std::string& arguments, const ScratchDir& scratch) {
+//! Runs `stengmc arguments`; `environment` ("NAME=value ...") is set for that process only.
+inline CliResult run_cli(const std::string& arguments, const ScratchDir& scratch, const std::string& environment = "") {
   const std::string log = scratch.file("cli.log");
-  const std::string command = std::string(STENGMC_BINARY) + " " + arguments + " > " + log + " 2>&1";
+  const std::string command = (environment.empty() ? "" : "env " + environment + " ") + std::string(STENGMC_BINARY) +
+                              " " + arguments + " > " + log + " 2>&1";
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,0 +1,223 @@
+#include "pipeline/work_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/constants.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+
+namespace stengmc {
+
+namespace {
+
+// The Model 2 integrator's own step budget per asperity (tribology/model2_integrator.cpp):
+// it stops with a ModelError there, so no estimate needs to go beyond it.
+constexpr double MODEL2_MAX_STEPS = 5e7;
+
+double log2_at_least_1(double n) { return std::max(1.0, std::log2(std::max(n, 2.0))); }
+
+std::string count(double n) { return format_number(std::round(n)); }
+
+//! The highest natural frequency of the run's asperities [Hz]; 0 when they are not drawn
+//! yet, so that an estimate for "at least n asperities" stays a lower bound of what any
+//! realisation costs (an ensemble refuses up front only what none could do).
+double fastest_natural_frequency_hz(const Study& study, bool asperities_known) {
+  if (!asperities_known) return 0.0;
+  double highest = 0.0;
+  for (const Asperity& a : study.asperities)
+    highest = std::max(highest, std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI));
+  return highest;
+}
+
+double traces_written(const Study& study) {
+  const OutputTraces& t = study.traces;
+  return (t.x ? 1 : 0) + (t.v ? 1 : 0) + (t.friction ? 1 : 0) + (t.current ? 1 : 0) + (t.charge ? 1 : 0) +
+         (t.x0 && study.model == ModelKind::model1 ? 1 : 0);
+}
+
+void add_tribology(const Study& study, double n, double samples, double natural_hz, WorkEstimate& e) {
+  const double duration = study.duration_s;
+  if (study.model == ModelKind::model1) {
+    const double drive_hz = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI);
+    const double fastest = std::max(drive_hz, natural_hz);
+    e.events = n * (EVENTS_PER_PERIOD * duration * fastest + 4.0);
+    e.add_memory("~" + count(e.events) + " stick/slip events (" + count(n) + " asperities, " + format_number(duration) +
+                     " s at up to " + format_number(fastest) + " Hz)",
+                 e.events * BYTES_PER_EVENT);
+    if (study.model1.solver == Model1Solver::exact) {
+      e.add_steps("Model 1 slip-end scan: " + count(n) + " asperities x " + format_number(duration) + " s x " +
+                      format_number(MODEL1_SCAN_STEPS_PER_PERIOD) + " per period of " + format_number(fastest) + " Hz",
+                  n * MODEL1_SCAN_STEPS_PER_PERIOD * duration * fastest + e.events * STEPS_PER_EVENT);
+    } else {
+      e.add_steps("Euler-Cromer: " + count(n) + " asperities x " + count(samples) + " samples x " +
+                      std::to_string(study.model1.euler_cromer_substeps) + " substeps",
+                  n * samples * static_cast<double>(study.model1.euler_cromer_substeps));
+    }
+    return;
+  }
+  const double periods = duration * natural_hz;
+  const double per_asperity =
+      std::min(MODEL2_MAX_STEPS, std::max(MODEL2_MIN_STEPS, periods * MODEL2_STEPS_PER_PERIOD *
+                                                                 std::pow(1e-8 / study.model2.relative_tolerance, 0.25)));
+  e.events = n * (EVENTS_PER_PERIOD * periods + 4.0);
+  e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity) + " steps", n * per_asperity);
+  e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity) + " steps",
+               n * per_asperity * MODEL2_BYTES_PER_STEP);
+  e.add_memory("~" + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
+}
+
+//! Spectra of a signal of `samples` samples and `currents` element currents; `file`: the
+//! spectra are written to a file.
+void add_spectra(double samples, double currents, const SpectrumSettings& s, WorkEstimate& e) {
+  const double padded = samples * static_cast<double>(s.zero_pad_factor);
+  const double signals = 1.0 + (s.element_currents ? currents : 0.0);
+  e.add_steps("FFT spectra: " + count(signals) + " signals x " + count(padded) + " points",
+              signals * padded * log2_at_least_1(padded));
+  e.add_memory("FFT spectra: " + count(signals) + " signals x " + count(padded) + " points",
+               FFT_BYTES_PER_POINT * padded + signals * (0.5 * padded + 1.0) * 8.0 * (1.0 + FILE_BYTES_PER_VALUE / 8.0));
+  if (s.high_resolution) {
+    const double analysed = std::min(samples, static_cast<double>(s.esprit.max_samples));
+    const double lines = static_cast<double>(s.esprit.max_lines);
+    e.add_memory("ESPRIT: " + count(analysed) + " samples x " + count(lines) + " lines",
+                 analysed * lines * ESPRIT_BYTES_PER_SAMPLE_LINE);
+    const double rows = std::min(analysed / 3.0, 256.0);
+    e.add_steps("ESPRIT", rows * rows * rows + rows * analysed + analysed * lines * lines);
+  }
+  if (s.spectrogram && samples >= static_cast<double>(s.spectrogram->window_samples)) {
+    const double window = static_cast<double>(s.spectrogram->window_samples);
+    const double segments = std::floor((samples - window) / static_cast<double>(s.spectrogram->hop_samples)) + 1.0;
+    e.add_memory("spectrogram: " + count(segments) + " segments x " + count(window / 2 + 1) + " bins",
+                 segments * (window / 2.0 + 1.0) * (8.0 + FILE_BYTES_PER_VALUE));
+    e.add_steps("spectrogram: " + count(segments) + " segments of " + count(window), segments * window * log2_at_least_1(window));
+  }
+}
+
+//! Drawing one realisation: its summits and their interaction.
+void add_sampling(const RandomSurface& surface, double realisations, WorkEstimate& e) {
+  const double summits = summits_upper_bound(surface);
+  e.add_memory(count(realisations) + " realisations x ~" + count(summits) + " summits", realisations * summits * BYTES_PER_SUMMIT);
+  e.add_steps("drawing " + count(realisations) + " realisations x ~" + count(summits) + " summits",
+              realisations * summits * 100.0);
+  if (!surface.materials) return;
+  // Spots within the 3 x 3 cells of side R_loc around each spot (surface/interaction.cpp).
+  const double spots = summits;
+  const double area = surface.nominal_area_m2;
+  const double radius = surface.interaction.localisation_radius_m > 0.0
+                            ? surface.interaction.localisation_radius_m
+                            : surface.interaction.localisation_spacings * std::sqrt(area / std::max(spots, 1.0));
+  const double neighbours = std::min(spots, 9.0 * radius * radius * spots / area + 1.0);
+  e.interaction_pairs = spots * neighbours;
+  const double iterations = surface.interaction_mode == InteractionMode::apply ? INTERACTION_ITERATIONS : 1.0;
+  e.add_steps("spot interaction: " + count(realisations) + " realisations x ~" + count(e.interaction_pairs) + " pairs x " +
+                  count(iterations) + " iterations (R_loc = " + format_number(radius) + " m)",
+              realisations * e.interaction_pairs * iterations);
+}
+
+std::string describe(double amount, bool bytes) {
+  return bytes ? format_number(amount / 1e9) + " GB" : format_number(amount) + " steps";
+}
+
+//! The largest part of `parts`.
+const WorkPart* largest(const std::vector<WorkPart>& parts) {
+  const auto it = std::max_element(parts.begin(), parts.end(),
+                                   [](const WorkPart& a, const WorkPart& b) { return a.amount < b.amount; });
+  return it == parts.end() ? nullptr : &*it;
+}
+
+}  // namespace
+
+void WorkEstimate::add_memory(std::string what, double bytes) {
+  memory_bytes += bytes;
+  memory.push_back({std::move(what), bytes});
+}
+
+void WorkEstimate::add_steps(std::string what, double count) {
+  steps += count;
+  work.push_back({std::move(what), count});
+}
+
+double summits_upper_bound(const RandomSurface& surface) {
+  const double mean = surface.mean_summit_count();
+  return surface.count_rule == CountRule::poisson ? mean + 6.0 * std::sqrt(mean) : mean;
+}
+
+WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file) {
+  WorkEstimate e;
+  const bool known = asperities < 0.0;
+  const double n = known ? static_cast<double>(study.asperities.size()) : asperities;
+  const double samples = std::round(study.duration_s * study.sample_rate_hz) + 1.0;
+  e.samples = samples;
+  e.asperities = n;
+  e.add_memory("program", BASE_BYTES);
+  e.add_memory(count(samples) + " samples", samples * RUN_BYTES_PER_SAMPLE);
+  e.add_memory(count(n) + " asperities x " + count(samples) + " samples", n * samples * RUN_BYTES_PER_ASPERITY_SAMPLE);
+  if (writes_run_file)
+    e.add_memory("run file: " + count(traces_written(study)) + " traces of " + count(n) + " asperities x " + count(samples) +
+                     " samples",
+                 (traces_written(study) * n + 3.0) * samples * FILE_BYTES_PER_VALUE);
+  add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), e);
+  e.add_steps("circuit (Radau IIA): " + count(n) + " elements x " + count(samples) + " samples x " +
+                  std::to_string(study.circuit.substeps) + " substeps",
+              n * std::max(samples - 1.0, 0.0) * static_cast<double>(study.circuit.substeps) * CIRCUIT_STAGES +
+                  n * samples);  // and the domain check
+  if (study.spectrum) add_spectra(samples, n, *study.spectrum, e);
+  if (const RandomSurface* surface = study.surface->random_surface()) add_sampling(*surface, 1.0, e);
+  return e;
+}
+
+WorkEstimate estimate_circuit(double samples, double elements, std::size_t substeps) {
+  WorkEstimate e;
+  e.samples = samples;
+  e.asperities = elements;
+  e.add_memory("program", BASE_BYTES);
+  // x read, the spline's times, values and slopes, x' written, currents and charges: 7
+  // values per element and sample, three of them written to the file.
+  e.add_memory(count(elements) + " elements x " + count(samples) + " samples",
+               elements * samples * (7.0 * 8.0 + 3.0 * FILE_BYTES_PER_VALUE));
+  e.add_memory(count(samples) + " samples", samples * RUN_BYTES_PER_SAMPLE);
+  e.add_steps("circuit (Radau IIA): " + count(elements) + " elements x " + count(samples) + " samples x " +
+                  std::to_string(substeps) + " substeps",
+              elements * samples * static_cast<double>(substeps) * CIRCUIT_STAGES);
+  return e;
+}
+
+WorkEstimate estimate_spectrum(double samples, double currents, const SpectrumSettings& settings) {
+  WorkEstimate e;
+  e.samples = samples;
+  e.asperities = currents;
+  e.add_memory("program", BASE_BYTES);
+  // Currents and velocities read (two values per element and sample), times and voltage.
+  e.add_memory(count(currents) + " elements x " + count(samples) + " samples", currents * samples * 16.0);
+  e.add_memory(count(samples) + " samples", samples * RUN_BYTES_PER_SAMPLE);
+  add_spectra(samples, currents, settings, e);
+  return e;
+}
+
+WorkEstimate estimate_surface(const RandomSurface& surface, double realisations) {
+  WorkEstimate e;
+  e.add_memory("program", BASE_BYTES);
+  add_sampling(surface, realisations, e);
+  return e;
+}
+
+std::string exceeded_limit(const WorkEstimate& e, const WorkLimits& limits) {
+  const auto over = [&](double amount, double limit, bool bytes, const std::vector<WorkPart>& parts,
+                        const std::string& option) {
+    std::string text = "needs ~" + describe(amount, bytes) + (bytes ? " of memory" : "") + ", " +
+                       format_number(amount / limit) + " x the limit of " + describe(limit, bytes);
+    if (const WorkPart* part = largest(parts)) text += "; most of it: " + part->what + " (~" + describe(part->amount, bytes) + ")";
+    return text + ". Reduce it, or raise the limit with " + option;
+  };
+  // !(a <= b) also catches NaN and inf from absurd inputs.
+  if (!(e.memory_bytes <= limits.memory_bytes)) return over(e.memory_bytes, limits.memory_bytes, true, e.memory, "--max-memory-gb");
+  if (!(e.steps <= limits.steps)) return over(e.steps, limits.steps, false, e.work, "--max-steps");
+  return "";
+}
+
+void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what) {
+  const std::string exceeded = exceeded_limit(estimate, limits);
+  if (!exceeded.empty()) throw InputError(what + " " + exceeded);
+}
+
+}  // namespace stengmc

@@ -1,0 +1,122 @@
+#pragma once
+//! What a computation will cost, estimated before it starts, and the limits it must stay
+//! within (README: "Limits"). Every command estimates its work here and refuses, naming the
+//! quantity, its estimate, the limit and the factor, what cannot fit or finish: one value
+//! (drive_frequency_hz = 1e12, a swept sample_rate_hz = 1e15) must never grow memory until
+//! the machine gives up, or loop for ever.
+//!
+//! The estimate is a sum of named contributions, each a count (samples, asperities,
+//! events, steps) times a per-item cost. The per-item costs are the named constants below,
+//! measured on this code (README: "Limits"); whoever changes what a solver keeps or does
+//! per sample, asperity, event or step updates them here, in one place.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "io/study.hpp"
+#include "spectral/spectrum_settings.hpp"
+#include "surface/random_surface.hpp"
+
+namespace stengmc {
+
+// ---------------------------------------------------------------- per-item costs
+
+//! Memory of one run per asperity and output sample [bytes]: x, x', friction, the circuit
+//! input's copy, Model 1's x0, element currents and charges, a flattening copy when written.
+inline constexpr double RUN_BYTES_PER_ASPERITY_SAMPLE = 64;
+//! Memory per output sample shared by all asperities [bytes]: times, V, Q, measured V, ...
+inline constexpr double RUN_BYTES_PER_SAMPLE = 64;
+//! Memory of an output file per value written [bytes]: the file is built in memory and
+//! copied once while it is written out (io/hdf5_file.hpp).
+inline constexpr double FILE_BYTES_PER_VALUE = 16;
+//! Memory per stick/slip event [bytes]: Model 1's phase (its closed-form coefficients),
+//! the event in the trajectory and in the run's sorted list, its row in the file.
+inline constexpr double BYTES_PER_EVENT = 256;
+//! Memory per Model 2 integrator step [bytes]: a dense-output knot (t, x, x', x'') kept for
+//! the circuit, with the vector's growth slack.
+inline constexpr double MODEL2_BYTES_PER_STEP = 64;
+//! Model 2 (RODAS4) steps per natural period at relative_tolerance 1e-8: 32 (v_b = 1 m/s)
+//! to 94 (v_b = 10 m/s) measured on the Fig. 6 studies; steps grow as tol^(-1/4) (order 4).
+inline constexpr double MODEL2_STEPS_PER_PERIOD = 100;
+//! Model 2 steps an asperity takes however short the run (start-up, one stick phase).
+inline constexpr double MODEL2_MIN_STEPS = 2000;
+//! Model 1 `exact`: the slip-end scan evaluates x' 64 times per shorter period (drive or
+//! natural), and each event adds a TOMS 748 refinement (~30 evaluations).
+inline constexpr double MODEL1_SCAN_STEPS_PER_PERIOD = 64;
+inline constexpr double STEPS_PER_EVENT = 30;
+//! Stick/slip events per asperity: x' changes sign at most twice per period of the faster
+//! of drive and natural oscillation.
+inline constexpr double EVENTS_PER_PERIOD = 2;
+//! Circuit: Radau IIA stages per substep, each evaluating every element.
+inline constexpr double CIRCUIT_STAGES = 3;
+//! Memory of a surface realisation per summit drawn [bytes]: ten per-summit arrays, and
+//! their copy in the file being written.
+inline constexpr double BYTES_PER_SUMMIT = 240;
+//! The interacting mode's fixed-point iterations at most (surface/interaction).
+inline constexpr double INTERACTION_ITERATIONS = 200;
+//! ESPRIT memory per analysed sample and line [bytes]: the least-squares design matrix
+//! (cos, sin per line) and the polish's Jacobian.
+inline constexpr double ESPRIT_BYTES_PER_SAMPLE_LINE = 48;
+//! Spectra: an FFT costs ~ N log2 N steps; its complex buffer 16 bytes per point.
+inline constexpr double FFT_BYTES_PER_POINT = 16;
+//! The program itself, its libraries and small tables [bytes].
+inline constexpr double BASE_BYTES = 64e6;
+
+// ---------------------------------------------------------------- limits
+
+struct WorkLimits {
+  //! Peak memory one command (or one ensemble realisation) may need [bytes]: --max-memory-gb.
+  double memory_bytes = 8e9;
+  //! Elementary solver steps one run may take (scan steps, integrator steps, circuit stage
+  //! evaluations, FFT points; ~100 ns each, so 1e11 is hours): --max-steps.
+  double steps = 1e11;
+};
+
+//! One named part of an estimate, for the message at the limit.
+struct WorkPart {
+  std::string what;     //!< "4 asperities x 1e+06 samples"
+  double amount = 0.0;  //!< bytes or steps
+};
+
+struct WorkEstimate {
+  double samples = 0.0;            //!< output samples M
+  double asperities = 0.0;         //!< n
+  double events = 0.0;             //!< stick/slip events, all asperities
+  double interaction_pairs = 0.0;  //!< spot pairs the interaction visits per realisation
+  double memory_bytes = 0.0;       //!< peak memory [bytes]
+  double steps = 0.0;              //!< elementary solver steps
+  std::vector<WorkPart> memory;    //!< what the memory is made of
+  std::vector<WorkPart> work;      //!< what the steps are made of
+
+  void add_memory(std::string what, double bytes);
+  void add_steps(std::string what, double steps);
+};
+
+//! One run of `study` with `asperities` asperities (its own count when negative: a fixed
+//! list or a drawn realisation); `writes_run_file` adds the run file (`run`), not an
+//! ensemble record. A random surface's sampling and interaction are included. With a
+//! count given, the asperities' natural frequencies are not known: the estimate is then a
+//! lower bound for any realisation with that many (what depends on them is left out).
+WorkEstimate estimate_run(const Study& study, double asperities = -1.0, bool writes_run_file = true);
+
+//! `stengmc circuit`: `elements` displacement series of `samples` samples.
+WorkEstimate estimate_circuit(double samples, double elements, std::size_t substeps);
+
+//! `stengmc spectrum`: a signal of `samples` samples with `currents` element currents.
+WorkEstimate estimate_spectrum(double samples, double currents, const SpectrumSettings& settings);
+
+//! `stengmc surface`: `realisations` realisations of `surface`.
+WorkEstimate estimate_surface(const RandomSurface& surface, double realisations);
+
+//! Summits one realisation draws at most (almost surely): the mean, or for a Poisson count
+//! the mean plus 6 standard deviations.
+double summits_upper_bound(const RandomSurface& surface);
+
+//! "" when `estimate` is within `limits`; else what exceeds: the quantity, its estimate,
+//! the limit, the factor, the largest contribution and how to raise the limit.
+std::string exceeded_limit(const WorkEstimate& estimate, const WorkLimits& limits);
+
+//! Throws InputError "<what>: <exceeded_limit>" when the estimate is over a limit.
+void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what);
+
+}  // namespace stengmc

@@ -1,0 +1,361 @@
+// A deterministic mutation fuzzer of the readers a user's files go through (README:
+// "Rejected inputs and faults"): study files (read, estimated and run within tight
+// limits), surface files (read and sampled), CSV files (displacements, signals,
+// histograms) and HDF5 files (run files read by `circuit`, `spectrum` and `plot`).
+//
+//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5
+//
+// Each execution takes a valid seed input (the repository's studies and surfaces, CSV and
+// HDF5 files made here), mutates it with a generator seeded by (SEED, execution) — bit
+// flips, byte changes, insertions, deletions, duplicated chunks, numbers replaced by
+// awkward ones (1e308, -1, 1e-310, nan, 2^63, "") — writes it to a scratch file and reads
+// it in this process. The only acceptable outcomes are those of a documented exit code: a
+// result (0), an InputError (2) or a ModelError (3). Anything else — another exception, a
+// non-finite number in a result, a signal, a sanitizer report (the sanitizer build runs
+// this too), more than 60 s on one input — is a finding: the input is kept as
+// fuzz-findings/<reader>-<execution>.bin (a crash leaves fuzz-findings/current.<reader>)
+// and the program exits 1. The same SEED and RUNS give the same inputs on every machine.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/displacement_input.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_file.hpp"
+#include "io/signal_input.hpp"
+#include "io/study.hpp"
+#include "io/toml_reader.hpp"
+#include "pipeline/run_study.hpp"
+#include "pipeline/run_summary.hpp"
+#include "pipeline/surface_examination.hpp"
+#include "pipeline/work_estimate.hpp"
+#include "surface/distribution.hpp"
+#include "surface/surface.hpp"
+
+namespace fs = std::filesystem;
+using namespace stengmc;
+
+namespace {
+
+// Tight limits: a mutated study may ask for anything; the fuzz wants many inputs, and the
+// limits themselves are under test (an estimate that lets a slow input through shows up
+// as the alarm below).
+const WorkLimits LIMITS{.memory_bytes = 0.3e9, .steps = 2e6};
+// Longer than any input within the limits takes (the Model 2 integrator's own step budget
+// can take tens of seconds to exhaust); shorter than "for ever".
+constexpr unsigned SECONDS_PER_INPUT = 60;
+
+//! What the alarm handler prints (prepared before each input: a handler may only write).
+char hang_message[512] = "";
+
+extern "C" void on_alarm(int) {
+  const ssize_t ignored = ::write(STDERR_FILENO, hang_message, std::strlen(hang_message));
+  (void)ignored;
+  ::_exit(1);
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// ---------------------------------------------------------------- mutations
+
+const std::vector<std::string> AWKWARD_TEXT = {
+    "0", "-0", "-1", "1e308", "-1e308", "1e309", "1e-310", "4.9e-324", "nan", "inf", "-inf", "1e300", "1e-300",
+    "9223372036854775807", "18446744073709551616", "4294967296", "2147483648", "\"\"", "[]", "{}", "1e15", "1e-15",
+    "0.5", "3", "\"/dev/zero\"", "\"random\"", "\"model1\"", "true", "1_000", "0x10", ",", "\n", "#", "=", "[", "]"};
+
+//! One random mutation of `bytes`; text inputs also get number replacements and line splices.
+void mutate_once(std::string& bytes, std::mt19937_64& rng, bool text, const std::vector<std::string>& others) {
+  const auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n); };
+  if (bytes.empty()) {
+    bytes = AWKWARD_TEXT[pick(AWKWARD_TEXT.size())];
+    return;
+  }
+  const std::size_t at = pick(bytes.size());
+  // Text inputs mostly get token-level changes (an awkward value where a number was, a line
+  // from another input): byte-level damage mostly tests the TOML parser, not stengmc.
+  const std::size_t kind = text ? std::array<std::size_t, 10>{0, 1, 2, 3, 5, 6, 6, 6, 6, 7}[rng() % 10] : rng() % 6;
+  switch (kind) {
+    case 0:  // flip a bit
+      bytes[at] = static_cast<char>(bytes[at] ^ (1 << (rng() % 8)));
+      break;
+    case 1:  // any byte
+      bytes[at] = static_cast<char>(rng() % 256);
+      break;
+    case 2:  // delete a run
+      bytes.erase(at, 1 + pick(std::min<std::size_t>(64, bytes.size() - at)));
+      break;
+    case 3:  // duplicate a chunk somewhere
+    {
+      const std::string chunk = bytes.substr(at, 1 + pick(256));
+      bytes.insert(pick(bytes.size() + 1), chunk);
+      break;
+    }
+    case 4:  // truncate
+      bytes.resize(at);
+      break;
+    case 5:  // an awkward 32- or 64-bit integer in place (lengths, offsets, counts)
+    {
+      const std::uint64_t values[] = {0, 1, 0xff, 0xffff, 0x7fffffff, 0xffffffff, 0x7fffffffffffffff, ~0ull};
+      const std::uint64_t v = values[pick(8)];
+      const std::size_t width = rng() % 2 ? 4 : 8;
+      for (std::size_t i = 0; i < width && at + i < bytes.size(); ++i) bytes[at + i] = static_cast<char>(v >> (8 * i));
+      break;
+    }
+    case 6:  // a number (or any token) replaced by an awkward one
+    {
+      std::size_t start = at;
+      while (start > 0 && (std::isalnum(static_cast<unsigned char>(bytes[start - 1])) || bytes[start - 1] == '.' ||
+                           bytes[start - 1] == '-' || bytes[start - 1] == '+'))
+        --start;
+      std::size_t end = at;
+      while (end < bytes.size() && (std::isalnum(static_cast<unsigned char>(bytes[end])) || bytes[end] == '.' ||
+                                    bytes[end] == '-' || bytes[end] == '+'))
+        ++end;
+      bytes.replace(start, end - start, AWKWARD_TEXT[pick(AWKWARD_TEXT.size())]);
+      break;
+    }
+    default:  // a line of another seed input
+    {
+      if (others.empty()) break;
+      const std::string& other = others[pick(others.size())];
+      const std::size_t from = other.rfind('\n', pick(other.size()));
+      const std::size_t begin = from == std::string::npos ? 0 : from + 1;
+      const std::size_t stop = other.find('\n', begin);
+      const std::string line = other.substr(begin, stop == std::string::npos ? std::string::npos : stop - begin + 1);
+      const std::size_t where = bytes.rfind('\n', at);
+      bytes.insert(where == std::string::npos ? 0 : where + 1, line);
+      break;
+    }
+  }
+}
+
+std::string mutate(const std::string& seed_input, std::mt19937_64& rng, bool text, const std::vector<std::string>& others) {
+  std::string bytes = seed_input;
+  const int count = 1 + static_cast<int>(rng() % (text ? 2 : 4));
+  for (int i = 0; i < count; ++i) mutate_once(bytes, rng, text, others);
+  return bytes;
+}
+
+// ---------------------------------------------------------------- seed inputs
+
+struct Corpus {
+  std::vector<std::string> inputs;
+  bool text = true;
+};
+
+std::vector<std::string> toml_files(const fs::path& folder) {
+  std::vector<fs::path> paths;
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().extension() == ".toml") paths.push_back(entry.path());
+  std::sort(paths.begin(), paths.end());  // directory order differs between machines
+  std::vector<std::string> texts;
+  for (const auto& p : paths) texts.push_back(read_file(p));
+  return texts;
+}
+
+std::string csv_of(const std::string& header, int rows, double (*value)(int, int), int columns) {
+  std::ostringstream out;
+  out.precision(17);
+  out << header << "\n";
+  for (int j = 0; j < rows; ++j) {
+    out << j * 1e-8;
+    for (int c = 1; c < columns; ++c) out << "," << value(j, c);
+    out << "\n";
+  }
+  return out.str();
+}
+
+//! A small run file of each model, written by this program, as the HDF5 seeds.
+std::vector<std::string> hdf5_seeds(const fs::path& scratch) {
+  std::vector<std::string> seeds;
+  for (const char* model : {"kind = \"model1\"", "kind = \"model2\"\nbelt_velocity_m_per_s = 10"}) {
+    const std::string text = std::string("duration_s = 1e-6\nsample_rate_hz = 50e6\n[model]\n") + model +
+                             "\n[surface]\n[surface.defaults]\nlength_m = 50e-6\n[[surface.asperity]]\n"
+                             "stiffness_n_per_m = 75\n[[surface.asperity]]\nstiffness_n_per_m = 155\n"
+                             "[spectrum]\nhigh_resolution = false\n";
+    const Study study = parse_study(text, (scratch / "seed.toml").string());
+    const RunResult result = run_study(study, RunOptions{.show_progress = false});
+    const fs::path file = scratch / "seed.h5";
+    write_run_file(file.string(), study, result, summarise(study, result));
+    seeds.push_back(read_file(file));
+  }
+  return seeds;
+}
+
+Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::path& scratch) {
+  Corpus c;
+  if (reader == "study") {
+    for (const char* folder : {"studies/paper", "studies/surfaces", "studies/ensembles"})
+      for (std::string text : toml_files(source / folder)) {
+        // Surface files by absolute path, so the study reads them from the scratch folder.
+        for (std::size_t at = text.find("\"../../surfaces/"); at != std::string::npos; at = text.find("\"../../surfaces/"))
+          text.replace(at, 7, "\"" + (source / "").string());
+        c.inputs.push_back(text);
+      }
+  } else if (reader == "surface") {
+    c.inputs = toml_files(source / "surfaces");
+  } else if (reader == "csv") {
+    c.inputs.push_back(csv_of("t,x1,x2", 40, [](int j, int c) { return 1e-7 * c * std::sin(0.3 * j); }, 3));
+    c.inputs.push_back(csv_of("t,V", 64, [](int j, int) { return std::sin(0.7 * j) + 0.1 * std::cos(2.3 * j); }, 2));
+    c.inputs.push_back("lower,upper,weight\n100e-6,105e-6,1\n105e-6,110e-6,3\n110e-6,120e-6,0.5\n");
+  } else if (reader == "hdf5") {
+    c.inputs = hdf5_seeds(scratch);
+    c.text = false;
+  }
+  return c;
+}
+
+// ---------------------------------------------------------------- the readers
+
+struct Finding {
+  std::string what;
+};
+
+void require_finite(const std::vector<double>& values, const char* what) {
+  for (double v : values)
+    if (!std::isfinite(v)) throw Finding{std::string("a non-finite value in ") + what};
+}
+
+void read_study_input(const fs::path& file) {
+  const Study study = read_study(file.string(), 0);
+  if (study.ensemble) return;  // an ensemble's realisations are the same runs; reading was the test
+  check_work(estimate_run(study), LIMITS, study.file);
+  const RunResult result = run_study(study, RunOptions{.show_progress = false, .limits = LIMITS});
+  require_finite(result.circuit.voltage_v, "the voltage");
+  require_finite(result.circuit.charge_c, "the charge");
+}
+
+void read_surface_input(const fs::path& file) {
+  auto document = TomlDocument::from_file(file.string());
+  TomlTable root = document->root();
+  const Surface surface = Surface::from_toml(root, file.parent_path());
+  document->reject_unknown_keys();
+  if (const RandomSurface* random = surface.random_surface()) check_work(estimate_surface(*random, 2.0), LIMITS, "surface");
+  const SurfaceExamination e = examine_surface(surface, 1, 0, 2, Model1Params{}, Model2Params{}, nullptr, ModelScope{});
+  for (const Population& p : e.populations)
+    for (const Asperity& a : p.asperities)
+      if (!std::isfinite(a.stiffness_n_per_m) || !std::isfinite(a.normal_load_n) || !std::isfinite(a.mass_kg))
+        throw Finding{"a non-finite asperity parameter"};
+}
+
+void read_csv_input(const fs::path& file, std::size_t execution) {
+  switch (execution % 3) {
+    case 0: {
+      const DisplacementInput input = read_displacement_csv(file.string(), StengElement{});
+      require_finite(input.times_s, "the times");
+      break;
+    }
+    case 1: {
+      const SignalInput input = read_signal_csv(file.string());
+      require_finite(input.voltage_v, "the voltages");
+      break;
+    }
+    default:
+      for (const auto& bin : Distribution::read_histogram(file))
+        if (!std::isfinite(bin.lower) || !std::isfinite(bin.upper) || !std::isfinite(bin.weight))
+          throw Finding{"a non-finite histogram bin"};
+  }
+}
+
+void read_hdf5_input(const fs::path& file, std::size_t execution) {
+  if (execution % 2 == 0) {
+    const DisplacementInput input = read_displacement_hdf5(file.string());
+    require_finite(input.times_s, "the times");
+  } else {
+    const SignalInput input = read_signal_hdf5(file.string());
+    require_finite(input.voltage_v, "the voltages");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5 RUNS [SEED]\n");
+    return 2;
+  }
+  const std::string reader = argv[1];
+  const std::size_t runs = std::stoul(argv[2]);
+  const std::uint64_t seed = argc > 3 ? std::stoull(argv[3]) : 1;
+  const fs::path source = STENGMC_SOURCE_DIR;
+  const fs::path scratch = fs::temp_directory_path() / ("stengmc-fuzz-" + reader + "-" + std::to_string(::getpid()));
+  const fs::path findings = fs::current_path() / "fuzz-findings";
+  fs::create_directories(scratch);
+  fs::create_directories(findings);
+  H5::Exception::dontPrint();
+  ::signal(SIGALRM, on_alarm);
+
+  const Corpus corpus = corpus_for(reader, source, scratch);
+  if (corpus.inputs.empty()) {
+    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5)\n", reader.c_str());
+    return 2;
+  }
+  const std::string extension = reader == "hdf5" ? ".h5" : reader == "csv" ? ".csv" : ".toml";
+  const fs::path input = scratch / ("input" + extension);
+  std::size_t accepted = 0, refused = 0, model_errors = 0, found = 0;
+  for (std::size_t i = 0; i < runs; ++i) {
+    std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + i);
+    const std::string& base = corpus.inputs[rng() % corpus.inputs.size()];
+    const std::string bytes = mutate(base, rng, corpus.text, corpus.inputs);
+    write_file(input, bytes);
+    write_file(findings / ("current." + reader), bytes);  // what a crash leaves behind
+    // A histogram a mutated surface names is this same CSV seed (surfaces/*.toml name none).
+    std::snprintf(hang_message, sizeof hang_message,
+                  "FINDING %s execution %zu: no result in %u s (input kept as %s)\n", reader.c_str(), i,
+                  SECONDS_PER_INPUT, (findings / ("current." + reader)).c_str());
+    ::alarm(SECONDS_PER_INPUT);  // a hang is a finding
+    std::string problem;
+    try {
+      if (reader == "study") read_study_input(input);
+      else if (reader == "surface") read_surface_input(input);
+      else if (reader == "csv") read_csv_input(input, i);
+      else read_hdf5_input(input, i);
+      ++accepted;
+    } catch (const InputError&) {
+      ++refused;
+    } catch (const ModelError&) {
+      ++model_errors;
+    } catch (const Finding& f) {
+      problem = f.what;
+    } catch (const std::exception& e) {
+      problem = std::string("an exception outside the documented exit codes: ") + e.what();
+    } catch (...) {
+      problem = "an unknown exception";
+    }
+    ::alarm(0);
+    if (!problem.empty()) {
+      ++found;
+      const fs::path kept = findings / (reader + "-" + std::to_string(i) + ".bin");
+      write_file(kept, bytes);
+      std::fprintf(stderr, "FINDING %s execution %zu: %s (input kept as %s)\n", reader.c_str(), i, problem.c_str(),
+                   kept.c_str());
+    }
+  }
+  fs::remove(findings / ("current." + reader));
+  fs::remove_all(scratch);
+  std::printf("fuzz %s: %zu executions (seed %llu): %zu read, %zu refused (input error), %zu model errors, %zu findings\n",
+              reader.c_str(), runs, static_cast<unsigned long long>(seed), accepted, refused, model_errors, found);
+  return found == 0 ? 0 : 1;
+}
