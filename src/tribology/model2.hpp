@@ -28,6 +28,10 @@ struct Model2Params {
   //! within 1e-6 of max|x| of a 100x tighter solution (measured worst case 3.1e-7, k = 155,
   //! v_b = 10; velocity within ~4e-6 of max|x'|). The global error scales ~linearly with it.
   double relative_tolerance = 1e-8;
+  //! Take exact steps of the linearised motion where friction is nearly linear (sliding);
+  //! false: RODAS4 alone, the method before issue 12. Not a study key: benchmarks and
+  //! tests compare the two.
+  bool sliding_propagator = true;
 };
 
 //! Friction force F(v_r) on the asperity [N] for relative velocity v_r = v_b - x' [m/s].
@@ -37,7 +41,7 @@ double model2_friction(const Model2Params& params, double normal_load_n, double 
 //! L-stable integrator; dense output between steps for the circuit.
 //! Method: RODAS4 (Hairer & Wanner) on the nondimensional system, see model2_integrator.hpp.
 //! The samples and the overtake/regrip events are taken from the quintic Hermite dense
-//! output (tribology/hermite_motion.hpp); Event::asperity is left 0 for the caller to set.
+//! output (tribology/model2_motion.hpp); Event::asperity is left 0 for the caller to set.
 //! @throws ModelError if the integrator fails (step size underflow, non-finite state); the
 //!         message names k, v_b and the time. @throws InputError for k <= 0 or m <= 0.
 Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, const TimeGrid& grid);

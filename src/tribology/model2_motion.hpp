@@ -1,0 +1,71 @@
+#pragma once
+//! Dense output of the Model 2 integrator: between consecutive step ends (knots) the
+//! Hermite interpolant of a RODAS4 step or the exact solution of a sliding-propagator step
+//! (PieceKind, model2_integrator.hpp).
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "tribology/events.hpp"
+#include "tribology/model2_integrator.hpp"
+#include "tribology/motion.hpp"
+
+namespace stengmc {
+
+class Model2Motion final : public Motion {
+ public:
+  //! Takes the integrator's knots (strictly increasing times, at least one) and pieces
+  //! (one per pair of consecutive knots).
+  //! @throws ModelError if the knots are empty or not increasing, or the counts disagree.
+  explicit Model2Motion(Model2Integration integration);
+
+  //! State at t [s], t within [first knot, last knot] (1e-9 relative slack at the ends).
+  //! @throws ModelError for t outside that range.
+  [[nodiscard]] PhasePoint at(double t_s, Side side = Side::right) const override;
+
+  //! Empty: x is C^1 everywhere, C^2 inside each piece; the stiff transitions are resolved
+  //! by the step sizes.
+  [[nodiscard]] const std::vector<double>& breakpoints() const override { return breakpoints_; }
+
+  //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
+  //! multiplication with its flow over one sample step (re-anchored in closed form
+  //! every 32 points, so rounding cannot drift: ~1e-15 relative), a few multiplications
+  //! per sample instead of an exponential and a sine.
+  void sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const override;
+
+  //! Sign changes of v_r = v_b - x' (overtake: to negative, regrip: to positive), located
+  //! to ~1e-15 of the step. A step is skipped when no sign change is possible (a bound on
+  //! x' over it); otherwise it is probed (Hermite pieces at 1/4, 1/2, 3/4 and the end;
+  //! oscillator pieces every 1/16 of the undamped period), so two crossings closer than
+  //! the probe spacing (v_r grazing zero) can be missed. Event::asperity is 0.
+  [[nodiscard]] std::vector<Event> relative_velocity_events(double belt_velocity_m_per_s) const;
+
+  [[nodiscard]] std::size_t knot_count() const { return knots_.size(); }
+  [[nodiscard]] const MotionKnot& knot(std::size_t i) const { return knots_[i]; }
+
+ private:
+  //! State at t on piece i (t may lie slightly outside it: the piece is extrapolated).
+  [[nodiscard]] PhasePoint on_piece(std::size_t i, double t_s) const;
+  //! Index of the piece holding t (clamped to the first/last).
+  [[nodiscard]] std::size_t piece_of(double t_s) const;
+
+  std::vector<MotionKnot> knots_;
+  std::vector<MotionPiece> pieces_;
+  double w0_;
+  std::vector<double> breakpoints_;
+};
+
+//! The quintic Hermite of (x, x', x'') at knots a and b, at t [s] (extrapolates outside).
+PhasePoint quintic_hermite(const MotionKnot& a, const MotionKnot& b, double t_s);
+
+//! The cubic Hermite of (x, x') at knots a and b, at t [s] (extrapolates outside).
+PhasePoint cubic_hermite(const MotionKnot& a, const MotionKnot& b, double t_s);
+
+//! Its velocity as a polynomial in s = (t - t_a) / (t_b - t_a), as below (degree 2).
+std::array<double, 5> cubic_hermite_velocity(const MotionKnot& a, const MotionKnot& b);
+
+//! Its velocity as a quartic in s = (t - t_a) / (t_b - t_a): x'(s) = sum_n c[n] s^n [m/s].
+std::array<double, 5> quintic_hermite_velocity(const MotionKnot& a, const MotionKnot& b);
+
+}  // namespace stengmc
