@@ -42,4 +42,10 @@ namespace stengmc {
 std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
                                         std::span<const double> x_m, double length_m);
 
+//! The same with the motion's samples at `times_s` (Motion::sample): the velocities at
+//! the samples are read from them instead of evaluated, so only the bisections evaluate
+//! the motion. Identical results when the samples are the motion's own.
+std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
+                                        const MotionSamples& samples, double length_m);
+
 }  // namespace stengmc

@@ -174,6 +174,16 @@ PhasePoint Model2Motion::at(double t_s, Side /*side*/) const {
   return on_piece(piece_of(t), t);
 }
 
+std::vector<double> Model2Motion::circuit_cuts(double resolution_s) const {
+  std::vector<double> cuts;
+  for (std::size_t i = 0; i + 1 < knots_.size(); ++i) {
+    if (!(knots_[i + 1].t_s - knots_[i].t_s < 0.25 * resolution_s)) continue;
+    if (cuts.empty() || cuts.back() < knots_[i].t_s) cuts.push_back(knots_[i].t_s);
+    cuts.push_back(knots_[i + 1].t_s);
+  }
+  return cuts;
+}
+
 void Model2Motion::sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const {
   const std::size_t count = times_s.size();
   // The walk needs a uniform grid (one flow for every half step); anything else is sampled

@@ -28,6 +28,11 @@ class Model2Motion final : public Motion {
   //! by the step sizes.
   [[nodiscard]] const std::vector<double>& breakpoints() const override { return breakpoints_; }
 
+  //! The ends of every step shorter than a quarter of `resolution_s` (the catch of the
+  //! belt, breakaway): x' turns there within picoseconds, which no interpolation through
+  //! samples `resolution_s` apart follows.
+  [[nodiscard]] std::vector<double> circuit_cuts(double resolution_s) const override;
+
   //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
   //! multiplication with its flow over one sample step (re-anchored in closed form
   //! every 32 points, so rounding cannot drift: ~1e-15 relative), a few multiplications

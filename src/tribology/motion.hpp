@@ -43,6 +43,16 @@ class Motion {
   //! knots of a linear interpolant). The circuit solver never steps across one.
   [[nodiscard]] virtual const std::vector<double>& breakpoints() const = 0;
 
+  //! Sorted times where a solver sampling this motion every `resolution_s` must end a
+  //! step for the motion to be smooth between them: the breakpoints, and where the motion
+  //! changes on a scale finer than `resolution_s` (Model 2 catching the belt within
+  //! picoseconds: the ends of its short steps). The streamed circuit evaluates the
+  //! motion exactly in the sample intervals holding one (circuit/element_sums.hpp).
+  [[nodiscard]] virtual std::vector<double> circuit_cuts(double resolution_s) const {
+    (void)resolution_s;
+    return breakpoints();
+  }
+
   //! The motion at `times_s` (strictly increasing) and, when `midpoints`, at the midpoints
   //! between them, into `out` (resized). The default evaluates at() at each; a motion
   //! with a cheaper way along a uniform grid (Model 2's oscillator pieces) overrides it.
