@@ -89,10 +89,10 @@ void ElementSums::reset(std::span<const double> times_s) {
   for (auto* v : {&p_, &k_, &dp_right_, &dk_right_, &dp_left_, &dk_left_}) v->assign(m, 0.0);
   for (auto* v : {&p_mid_, &k_mid_, &dp_mid_, &dk_mid_}) v->assign(intervals, 0.0);
   exceptions_.clear();
-  element_cuts_.clear();
+  element_kinks_.clear();
 }
 
-void ElementSums::add(const StengElement& element, const MotionSamples& samples, const Motion& motion) {
+bool ElementSums::add(const StengElement& element, const MotionSamples& samples, const Motion& motion) {
   const std::size_t m = times_.size();
   if (samples.x_m.size() != m || samples.v_m_per_s.size() != m || (m > 0 && samples.mid_x_m.size() != m - 1))
     throw Error("circuit: an element's samples do not match the grid (midpoints needed)");
@@ -113,32 +113,28 @@ void ElementSums::add(const StengElement& element, const MotionSamples& samples,
     dp_left_[j] += cw * v_left[j];
     dk_left_[j] += g * v_left[j];
   }
-  // Intervals with a cut strictly inside: this element is evaluated there exactly.
+  // Intervals with a kink or fine structure strictly inside: this element is evaluated
+  // there exactly. Both lists are walked against the grid together.
   const double resolution = m >= 2 ? (times_.back() - times_.front()) / static_cast<double>(m - 1) : 0.0;
-  std::vector<double> cut_times = motion.circuit_cuts(resolution);
-  const std::vector<double>& kinks = cut_times;
-  const std::size_t cuts_index = element_cuts_.size();
-  bool has_exception = false;
-  auto kink = std::upper_bound(kinks.begin(), kinks.end(), m > 0 ? times_.front() : 0.0);
-  std::size_t next_exception = m;  // first interval at or after the scan with a kink inside
-  auto find_next = [&](std::size_t from) {
-    for (; kink != kinks.end(); ++kink) {
-      // Interval holding *kink: the last j with t_j < kink.
-      const auto after = std::lower_bound(times_.begin() + static_cast<std::ptrdiff_t>(from), times_.end(), *kink);
-      if (after == times_.end()) return m;
-      const auto j = static_cast<std::size_t>(after - times_.begin());
-      if (*after == *kink || j == 0) continue;  // on a sample: the left/right limits handle it
-      return j - 1;
+  const std::vector<double>& kinks = motion.breakpoints();
+  const std::vector<double> fine = motion.fine_structure(resolution);
+  std::vector<char> flags(m > 0 ? m - 1 : 0, 0);  // per interval: 1 kink, 2 fine structure
+  auto mark = [&](const std::vector<double>& list, char flag) {
+    std::size_t j = 0;
+    for (const double t : list) {
+      while (j < m && times_[j] < t) ++j;  // first sample at or after t
+      if (j == 0 || j == m || times_[j] == t) continue;  // outside, or on a sample (one-sided limits)
+      flags[j - 1] |= flag;
     }
-    return m;
   };
-  next_exception = find_next(0);
+  mark(kinks, 1);
+  mark(fine, 2);
+  const std::size_t kinks_index = element_kinks_.size();
+  bool has_exception = false;
   for (std::size_t j = 0; j + 1 < m; ++j) {
-    if (j == next_exception) {
-      exceptions_.push_back({j, &motion, cuts_index, cw, g, x[j], v[j], x[j + 1], v_left[j + 1]});
+    if (flags[j] != 0) {
+      exceptions_.push_back({j, &motion, kinks_index, (flags[j] & 2) != 0, cw, g, x[j], v[j], x[j + 1], v_left[j + 1]});
       has_exception = true;
-      while (kink != kinks.end() && *kink < times_[j + 1]) ++kink;
-      next_exception = find_next(j + 1);
       continue;
     }
     p_mid_[j] += cw * samples.mid_x_m[j];
@@ -146,7 +142,8 @@ void ElementSums::add(const StengElement& element, const MotionSamples& samples,
     dp_mid_[j] += cw * samples.mid_v_m_per_s[j];
     dk_mid_[j] += g * samples.mid_v_m_per_s[j];
   }
-  if (has_exception) element_cuts_.push_back(std::move(cut_times));
+  if (has_exception) element_kinks_.push_back(kinks);
+  return has_exception;
 }
 
 //! The solve, with the tables it shares between intervals.
@@ -182,11 +179,16 @@ struct SummedCircuitSolver {
     });
   }
 
-  //! One Radau IIA step of U' = alpha U + beta over h, from the stage coefficients.
+  //! One Radau IIA step of U' = alpha U + beta over h, from the stage coefficients: the
+  //! last stage of (I - h A diag(alpha)) U = u 1 + h A beta, by Cramer's rule. The matrix
+  //! is well conditioned for alpha <= 0 (I plus h |alpha| times A's columns; A is
+  //! invertible with condition ~10), so no pivoting is needed.
   static double radau_step(double u, double h, const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta) {
     const Eigen::Matrix3d system = Eigen::Matrix3d::Identity() - h * RADAU_A * alpha.asDiagonal();
     const Eigen::Vector3d rhs = Eigen::Vector3d::Constant(u) + h * RADAU_A * beta;
-    return system.partialPivLu().solve(rhs)[2];
+    Eigen::Matrix3d last = system;
+    last.col(2) = rhs;
+    return last.determinant() / system.determinant();
   }
 
   double alpha_at(double capacitance, double t) const {
@@ -224,6 +226,7 @@ struct SummedCircuitSolver {
     double p0 = sums.p_[j], dp0 = sums.dp_right_[j], p1 = sums.p_[j + 1], dp1 = sums.dp_left_[j + 1];
     double k0 = sums.k_[j], dk0 = sums.dk_right_[j], k1 = sums.k_[j + 1], dk1 = sums.dk_left_[j + 1];
     std::vector<double> cuts;
+    bool fine = false;
     for (std::size_t e = first; e < last; ++e) {
       const ElementSums::Exception& ex = sums.exceptions_[exception_order[e]];
       p0 -= ex.charge_per_m * ex.x_start;
@@ -234,7 +237,8 @@ struct SummedCircuitSolver {
       dk0 -= ex.capacitance_per_m * ex.v_start;
       k1 -= ex.capacitance_per_m * ex.x_end;
       dk1 -= ex.capacitance_per_m * ex.v_end;
-      const std::vector<double>& kinks = sums.element_cuts_[ex.cuts];
+      fine = fine || ex.fine;
+      const std::vector<double>& kinks = sums.element_kinks_[ex.kinks];
       for (auto it = std::upper_bound(kinks.begin(), kinks.end(), ta); it != kinks.end() && *it < tb; ++it)
         cuts.push_back(*it);
     }
@@ -253,13 +257,14 @@ struct SummedCircuitSolver {
       source = slope / h;
       k_sum = value;
     };
-    const auto substeps = static_cast<double>(params.substeps);
+    const std::size_t steps = params.substeps * (fine ? FINE_STRUCTURE_REFINEMENT : 1);
+    const auto substeps = static_cast<double>(steps);
     double t = ta;
     for (const double piece_end : cuts) {
       const double span = piece_end - t;
       double t_step = t;
-      for (std::size_t m = 1; m <= params.substeps; ++m) {
-        const double t_next = m == params.substeps ? piece_end : t + span * (static_cast<double>(m) / substeps);
+      for (std::size_t m = 1; m <= steps; ++m) {
+        const double t_next = m == steps ? piece_end : t + span * (static_cast<double>(m) / substeps);
         const double hs = t_next - t_step;
         Eigen::Vector3d alpha, beta;
         for (int st = 0; st < STAGES; ++st) {

@@ -79,7 +79,7 @@ RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, 
   record.realisation = realisation;
   try {
     const Study study = study_for_realisation(base, realisation);
-    const RunResult result = run_study(study, RunOptions{.show_progress = false});
+    const RunResult result = run_study(study, RunOptions{.show_progress = false, .keep_traces = false});
     const RunSummary summary = summarise(study, result);
     fill_scalars(study, result, summary, record);
     fill_asperities(study, result, summary, record);

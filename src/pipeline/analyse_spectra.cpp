@@ -114,7 +114,7 @@ SpectralResult analyse_spectra(const SpectralInput& input, const SpectrumSetting
     return std::pair{values, mean};
   };
 
-  SpectrumAnalyzer analyzer(result.samples, settings.window, settings.zero_pad_factor);
+  SpectrumAnalyzer& analyzer = thread_spectrum_analyzer(result.samples, settings.window, settings.zero_pad_factor);
   const auto [voltage, mean_voltage] = segment(input.voltage_v, "the voltage");
   result.mean_v = mean_voltage;
   result.voltage = analyzer.analyse(voltage, result.sample_rate_hz);

@@ -247,13 +247,13 @@ RunResult run_study(const Study& study, const RunOptions& options) {
           ? std::span<const double>(study.circuit_input == CircuitInput::imposed ? drive_x : t.x_m)
           : std::span<const double>();
       first_exit = std::min(first_exit, domain_exit(study, i, *input, times, *input_samples, own_x, result));
-      sums.add(a.element, *input_samples, *input);
+      const bool circuit_needs_motion = sums.add(a.element, *input_samples, *input);
       if (keep.circuit_samples) circuit_samples[i] = *input_samples;
       if (study.model == ModelKind::model1 && !keep.x) t.x_m = {};
       if (study.model == ModelKind::model1 && !keep.v) t.v_m_per_s = {};
       if (study.model == ModelKind::model1 && !keep.friction) t.friction_n = {};
-      // The circuit evaluates a motion itself only inside intervals holding its kinks.
-      if (!keep.motion && input == t.motion.get() && t.motion->breakpoints().empty()) t.motion.reset();
+      // The circuit evaluates a motion itself only inside intervals holding its cuts.
+      if (!keep.motion && !(circuit_needs_motion && input == t.motion.get())) t.motion.reset();
       if (progress) progress->advance();
     }
   }

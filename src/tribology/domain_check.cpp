@@ -101,6 +101,8 @@ std::optional<double> scan(const Motion& motion, std::span<const double> times_s
   for (std::size_t j = 0; j < x_m.size(); ++j) require_finite_displacement(x_m[j], times_s[j]);
   if (x_m.empty()) return std::nullopt;
   if (x_m[0] >= length_m) return times_s[0];
+  // A motion that bounds itself below l has no exit to look for.
+  if (motion.displacement_bound() < length_m) return std::nullopt;
 
   for (std::size_t j = 0; j + 1 < x_m.size(); ++j) {
     const double a = times_s[j];

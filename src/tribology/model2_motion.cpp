@@ -174,7 +174,46 @@ PhasePoint Model2Motion::at(double t_s, Side /*side*/) const {
   return on_piece(piece_of(t), t);
 }
 
-std::vector<double> Model2Motion::circuit_cuts(double resolution_s) const {
+double Model2Motion::displacement_bound() const {
+  double bound = knots_.front().x_m;
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    const MotionKnot& a = knots_[i];
+    const MotionKnot& b = knots_[i + 1];
+    const double h = b.t_s - a.t_s;
+    const MotionPiece& piece = pieces_[i];
+    double top = 0.0;
+    if (piece.kind == PieceKind::oscillator) {
+      // x - centre = the free oscillator from the piece's start state (its energy
+      // (x - c)^2 + (x'/w0)^2 does not grow for zeta >= 0) plus its response to the forcing
+      // P = x_p'' + 2 zeta x_p' + x_p from rest, at most tau max|P| times the impulse
+      // response's bound e^{-zeta s} |sin(w s)| / w <= 1 / w, w = sqrt(1 - zeta^2)
+      // (s for zeta >= 1); for zeta < 0 both grow at most as e^{|zeta| tau}.
+      const double z = a.x_m - piece.centre_m;
+      const double dz = a.v_m_per_s / w0_;
+      const double tau_end = w0_ * h;
+      const double growth = piece.zeta >= 0.0 ? 1.0 : std::exp(-piece.zeta * tau_end);
+      const auto& x = piece.particular_m;
+      double forcing = 0.0, power = 1.0;
+      for (std::size_t j = 0; j < MOTION_PIECE_TERMS; ++j, power *= std::max(1.0, tau_end)) {
+        const double c2 = j + 2 < MOTION_PIECE_TERMS ? static_cast<double>((j + 2) * (j + 1)) * x[j + 2] : 0.0;
+        const double c1 = j + 1 < MOTION_PIECE_TERMS ? 2.0 * piece.zeta * static_cast<double>(j + 1) * x[j + 1] : 0.0;
+        forcing += std::abs(c2 + c1 + x[j]) * power;
+      }
+      const double impulse = piece.zeta < 1.0 ? 1.0 / std::sqrt((1.0 - piece.zeta) * (1.0 + piece.zeta)) : tau_end;
+      top = piece.centre_m + (std::sqrt(z * z + dz * dz) + tau_end * forcing * impulse) * growth;
+    } else {
+      const std::array<double, 5> c =
+          piece.kind == PieceKind::quintic ? quintic_hermite_velocity(a, b) : cubic_hermite_velocity(a, b);
+      double rise = 0.0;
+      for (std::size_t n = 0; n < c.size(); ++n) rise += std::abs(c[n]) / static_cast<double>(n + 1);
+      top = a.x_m + h * rise;
+    }
+    if (!(top <= bound)) bound = std::isnan(top) ? INFINITY : top;
+  }
+  return bound;
+}
+
+std::vector<double> Model2Motion::fine_structure(double resolution_s) const {
   std::vector<double> cuts;
   for (std::size_t i = 0; i + 1 < knots_.size(); ++i) {
     if (!(knots_[i + 1].t_s - knots_[i].t_s < 0.25 * resolution_s)) continue;
@@ -244,8 +283,8 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       const MotionPiece& osc = pieces_[piece];
       const MotionKnot& a = knots_[piece];
       const double w0_step = w0_ * step;
-      const OscillatorFlow full_step = OscillatorFlow::over(osc.zeta, w0_step);
       const OscillatorFlow half_step = OscillatorFlow::over(osc.zeta, 0.5 * w0_step);
+      const OscillatorFlow full_step = half_step.doubled();
       // x_p and x_p' / w0 as two polynomials in tau.
       constexpr std::size_t top = MOTION_PIECE_TERMS - 1;
       const std::array<double, MOTION_PIECE_TERMS>& px = osc.particular_m;
@@ -340,10 +379,17 @@ std::vector<Event> Model2Motion::relative_velocity_events(double belt_velocity) 
     if (std::abs(belt_velocity) > speed_bound && (fa < 0.0) == (belt_velocity < 0.0)) continue;
     auto vr = [&](double s) { return belt_velocity - on_piece(i, a.t_s + s * h).v_m_per_s; };
     const auto probes = static_cast<std::size_t>(std::ceil(w0_ * h / (2.0 * PI) * PROBES_PER_PERIOD)) + 1;
+    // The probes walk the free oscillator with its flow over one probe spacing (as
+    // sample() does); only a bracketed root is refined in closed form.
+    const OscillatorFlow probe_step = OscillatorFlow::over(osc.zeta, w0_ * h / static_cast<double>(probes));
+    double z = z0, dz = dz0;
     double sa = 0.0;
     for (std::size_t p = 1; p <= probes; ++p) {
       const double sb = p < probes ? static_cast<double>(p) / static_cast<double>(probes) : 1.0;
-      const double fb = p < probes ? vr(sb) : belt_velocity - b.v_m_per_s;
+      probe_step.apply(z, dz);
+      double zp = 0.0, dzp = 0.0;
+      particular_at(osc, w0_ * sb * h, zp, dzp);
+      const double fb = p < probes ? belt_velocity - w0_ * (dz + dzp) : belt_velocity - b.v_m_per_s;
       if ((fa < 0.0) != (fb < 0.0)) crossing(a.t_s + locate_sign_change(vr, sa, fa, sb, fb) * h, fb);
       sa = sb;
       fa = fb;

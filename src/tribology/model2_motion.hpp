@@ -31,7 +31,14 @@ class Model2Motion final : public Motion {
   //! The ends of every step shorter than a quarter of `resolution_s` (the catch of the
   //! belt, breakaway): x' turns there within picoseconds, which no interpolation through
   //! samples `resolution_s` apart follows.
-  [[nodiscard]] std::vector<double> circuit_cuts(double resolution_s) const override;
+  [[nodiscard]] std::vector<double> fine_structure(double resolution_s) const override;
+
+  //! The largest of the pieces' bounds: a Hermite piece rises at most h sum_n |c_n| / (n+1)
+  //! above its start (its velocity quartic integrated term by term), an oscillator piece
+  //! stays within centre + sqrt((x - centre)^2 + (x'/w0)^2) at its start (the free
+  //! oscillator's energy) + tau max|P| (the response to its polynomial forcing P), both
+  //! times the growth e^{|zeta| tau} for zeta < 0.
+  [[nodiscard]] double displacement_bound() const override;
 
   //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
   //! multiplication with its flow over one sample step (re-anchored in closed form

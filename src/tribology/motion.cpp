@@ -1,8 +1,11 @@
 #include "tribology/motion.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace stengmc {
+
+double Motion::displacement_bound() const { return INFINITY; }
 
 void Motion::sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const {
   const std::size_t count = times_s.size();

@@ -43,15 +43,18 @@ class Motion {
   //! knots of a linear interpolant). The circuit solver never steps across one.
   [[nodiscard]] virtual const std::vector<double>& breakpoints() const = 0;
 
-  //! Sorted times where a solver sampling this motion every `resolution_s` must end a
-  //! step for the motion to be smooth between them: the breakpoints, and where the motion
-  //! changes on a scale finer than `resolution_s` (Model 2 catching the belt within
-  //! picoseconds: the ends of its short steps). The streamed circuit evaluates the
-  //! motion exactly in the sample intervals holding one (circuit/element_sums.hpp).
-  [[nodiscard]] virtual std::vector<double> circuit_cuts(double resolution_s) const {
+  //! Sorted times where the motion changes on a finer scale than samples `resolution_s`
+  //! apart resolve, though it has no breakpoint there (Model 2 catching the belt within
+  //! picoseconds). The streamed circuit evaluates the motion exactly in the sample
+  //! intervals holding one, with finer steps (circuit/element_sums.hpp). None by default.
+  [[nodiscard]] virtual std::vector<double> fine_structure(double resolution_s) const {
     (void)resolution_s;
-    return breakpoints();
+    return {};
   }
+
+  //! An upper bound on x over the whole motion [m], +inf when unknown (the default). Where
+  //! it is below an element's l, x cannot reach l and the domain check has nothing to do.
+  [[nodiscard]] virtual double displacement_bound() const;
 
   //! The motion at `times_s` (strictly increasing) and, when `midpoints`, at the midpoints
   //! between them, into `out` (resized). The default evaluates at() at each; a motion

@@ -39,6 +39,12 @@ struct OscillatorFlow {
     return {decay_cos + zeta * decay_sin, decay_sin, -decay_sin, decay_cos - zeta * decay_sin};
   }
 
+  //! The flow over twice the time: this one applied twice (4 multiply-adds per entry,
+  //! instead of another exponential and sine).
+  [[nodiscard]] OscillatorFlow doubled() const {
+    return {m00 * m00 + m01 * m10, m00 * m01 + m01 * m11, m10 * m00 + m11 * m10, m10 * m01 + m11 * m11};
+  }
+
   //! (z, z') advanced by the flow, in place.
   void apply(double& z, double& dz) const {
     const double z1 = m00 * z + m01 * dz;

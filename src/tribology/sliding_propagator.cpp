@@ -32,8 +32,7 @@ class Collocation {
  public:
   Collocation(const ScaledSystem& sys, const Vec2& y, const Vec2& f, const Mat2& jac, double h)
       : sys_(sys), h_(h), zeta_(-0.5 * jac(1, 1)), centre_(f[1] + y[0] + 2.0 * zeta_ * y[1]),
-        z0_{y[0] - centre_, y[1]}, node_(OscillatorFlow::over(zeta_, h / Q)),
-        half_(OscillatorFlow::over(zeta_, 0.5 * h / Q)) {}
+        z0_{y[0] - centre_, y[1]}, half_(OscillatorFlow::over(zeta_, 0.5 * h / Q)), node_(half_.doubled()) {}
 
   //! g(w): the true acceleration minus the frozen one (it does not depend on u).
   [[nodiscard]] double remainder(double w) const {
@@ -130,8 +129,8 @@ class Collocation {
   double zeta_;
   double centre_;
   Vec2 z0_;
-  OscillatorFlow node_;  // flow over a node spacing
-  OscillatorFlow half_;  // and over half of one
+  OscillatorFlow half_;  // flow over half a node spacing
+  OscillatorFlow node_;  // and over a whole one
   bool fitted_ = false;
   std::array<double, K + 1> p_{};   // u_p coefficients a_j,u
   std::array<double, K + 1> dp_{};  // j a_j,u: w_p = sum_j dp_j tau^(j-1)
