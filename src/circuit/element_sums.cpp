@@ -180,15 +180,25 @@ struct SummedCircuitSolver {
   }
 
   //! One Radau IIA step of U' = alpha U + beta over h, from the stage coefficients: the
-  //! last stage of (I - h A diag(alpha)) U = u 1 + h A beta, by Cramer's rule. The matrix
-  //! is well conditioned for alpha <= 0 (I plus h |alpha| times A's columns; A is
-  //! invertible with condition ~10), so no pivoting is needed.
-  static double radau_step(double u, double h, const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta) {
-    const Eigen::Matrix3d system = Eigen::Matrix3d::Identity() - h * RADAU_A * alpha.asDiagonal();
-    const Eigen::Vector3d rhs = Eigen::Vector3d::Constant(u) + h * RADAU_A * beta;
-    Eigen::Matrix3d last = system;
-    last.col(2) = rhs;
-    return last.determinant() / system.determinant();
+  //! last stage of (I - h A diag(alpha)) U = u 1 + h A beta, by Gaussian elimination. For
+  //! alpha <= 0 the matrix is I plus h |alpha| times A's columns (A is invertible, condition
+  //! ~10), so elimination in order needs no pivoting (multipliers stay below ~2).
+  static double radau_step(double u, double h, const double (&alpha)[STAGES], const double (&beta)[STAGES]) {
+    double m[STAGES][STAGES], r[STAGES];
+    for (int i = 0; i < STAGES; ++i) {
+      r[i] = u;
+      for (int k = 0; k < STAGES; ++k) {
+        m[i][k] = (i == k ? 1.0 : 0.0) - h * RADAU_A(i, k) * alpha[k];
+        r[i] += h * RADAU_A(i, k) * beta[k];
+      }
+    }
+    for (int pivot = 0; pivot < STAGES - 1; ++pivot)
+      for (int i = pivot + 1; i < STAGES; ++i) {
+        const double factor = m[i][pivot] / m[pivot][pivot];
+        for (int k = pivot + 1; k < STAGES; ++k) m[i][k] -= factor * m[pivot][k];
+        r[i] -= factor * r[pivot];
+      }
+    return r[STAGES - 1] / m[STAGES - 1][STAGES - 1];
   }
 
   double alpha_at(double capacitance, double t) const {
@@ -204,7 +214,7 @@ struct SummedCircuitSolver {
     p << sums.p_[j] / h, sums.dp_right_[j], sums.p_mid_[j] / h, sums.dp_mid_[j], sums.p_[j + 1] / h, sums.dp_left_[j + 1];
     kk << sums.k_[j], h * sums.dk_right_[j], sums.k_mid_[j], h * sums.dk_mid_[j], sums.k_[j + 1], h * sums.dk_left_[j + 1];
     const double hs = h / static_cast<double>(params.substeps);
-    Eigen::Vector3d alpha, beta;
+    double alpha[STAGES], beta[STAGES];
     std::size_t node = 0;
     for (std::size_t m = 0; m < params.substeps; ++m) {
       for (int st = 0; st < STAGES; ++st, ++node) {
@@ -266,7 +276,7 @@ struct SummedCircuitSolver {
       for (std::size_t m = 1; m <= steps; ++m) {
         const double t_next = m == steps ? piece_end : t + span * (static_cast<double>(m) / substeps);
         const double hs = t_next - t_step;
-        Eigen::Vector3d alpha, beta;
+        double alpha[STAGES], beta[STAGES];
         for (int st = 0; st < STAGES; ++st) {
           // The last node is the step's end exactly, from the left (a kink belongs to
           // the next step).
@@ -292,14 +302,13 @@ struct SummedCircuitSolver {
     return u;
   }
 
-  SummedCircuit solve(std::size_t samples, Progress* progress) {
+  void solve(std::size_t samples, Progress* progress, SummedCircuit& out) {
     const std::vector<double>& t = sums.times_;
     samples = std::min(samples, t.size());
-    SummedCircuit out;
     out.voltage_v.assign(samples, 0.0);
     out.charge_c.assign(samples, 0.0);
     out.dv_dt_v_per_s.assign(samples, 0.0);
-    if (samples == 0) return out;
+    if (samples == 0) return;
     // V(t0) = 0 and Q(t0) = 0; V' from the right there, the motion the first interval sees.
     {
       const double capacitance = base_capacitance - sums.k_[0];
@@ -331,19 +340,25 @@ struct SummedCircuitSolver {
       }
     }
     if (progress != nullptr) progress->advance(unreported);
-    return out;
   }
 };
 
 SummedCircuit solve_summed_circuit(const ElementSums& sums, std::size_t samples, const CircuitParams& params,
                                    Progress* progress) {
+  SummedCircuit out;
+  solve_summed_circuit(sums, samples, params, out, progress);
+  return out;
+}
+
+void solve_summed_circuit(const ElementSums& sums, std::size_t samples, const CircuitParams& params, SummedCircuit& out,
+                          Progress* progress) {
   if (!(params.load_resistance_ohm > 0.0) || !std::isfinite(params.load_resistance_ohm))
     throw InputError("circuit: load resistance must be a positive finite number of ohms");
   if (!(params.load_capacitance_f >= 0.0) || !std::isfinite(params.load_capacitance_f))
     throw InputError("circuit: load capacitance must be >= 0 F");
   if (params.substeps == 0) throw InputError("circuit: substeps must be >= 1");
   SummedCircuitSolver solver(sums, params);
-  return solver.solve(samples, progress);
+  solver.solve(samples, progress, out);
 }
 
 void element_traces(const StengElement& element, const MotionSamples& samples, const SummedCircuit& circuit,

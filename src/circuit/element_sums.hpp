@@ -100,6 +100,10 @@ struct SummedCircuit {
 SummedCircuit solve_summed_circuit(const ElementSums& sums, std::size_t samples, const CircuitParams& params,
                                    Progress* progress = nullptr);
 
+//! The same into `out`, whose buffers are reused.
+void solve_summed_circuit(const ElementSums& sums, std::size_t samples, const CircuitParams& params, SummedCircuit& out,
+                          Progress* progress = nullptr);
+
 //! One element's current i = sigma w x' + (eps0 w x'/d0) V - C_i V' (x' from the left, as
 //! V' is) and delivered charge Q_i(t) - Q_i(t0), Q_i = sigma w x - C_i V (exact), on the
 //! circuit's samples, into `current_a` and `charge_c` (resized).

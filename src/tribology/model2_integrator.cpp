@@ -116,7 +116,7 @@ void rodas4_step(const ScaledSystem& sys, const Vec2& y, const Vec2& f0, const M
 
 }  // namespace
 
-Model2Integration integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s) {
+void integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s, Model2Integration& out) {
   const double k = asperity.stiffness_n_per_m;
   const double m = asperity.mass_kg;
   if (!(k > 0.0) || !(m > 0.0) || !std::isfinite(k) || !std::isfinite(m)) {
@@ -150,7 +150,11 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
   const double accel_scale = w0 * velocity_scale;
 
   const ScaledSystem sys(asperity, params, length_m);
-  Model2Integration out;
+  out.knots.clear();
+  out.pieces.clear();
+  out.accepted_steps = 0;
+  out.oscillator_steps = 0;
+  out.rejected_steps = 0;
   out.natural_frequency_rad_per_s = w0;
   auto push_knot = [&](double tau, const Vec2& y, const Vec2& f) {
     out.knots.push_back({tau / w0, y[0] * length_m, y[1] * velocity_scale, f[1] * accel_scale});
@@ -266,6 +270,11 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
       last_rejected = true;
     }
   }
+}
+
+Model2Integration integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s) {
+  Model2Integration out;
+  integrate_model2(asperity, params, t_end_s, out);
   return out;
 }
 

@@ -133,4 +133,7 @@ struct Model2Integration {
 //! @throws InputError for non-positive mass or stiffness, or a non-positive tolerance.
 Model2Integration integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s);
 
+//! The same into `out`, whose buffers are reused (emptied first, capacity kept).
+void integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s, Model2Integration& out);
+
 }  // namespace stengmc

@@ -138,6 +138,14 @@ Model2Motion::Model2Motion(Model2Integration integration)
   }
 }
 
+Model2Integration Model2Motion::release() && {
+  Model2Integration out;
+  out.knots = std::move(knots_);
+  out.pieces = std::move(pieces_);
+  out.natural_frequency_rad_per_s = w0_;
+  return out;
+}
+
 std::size_t Model2Motion::piece_of(double t_s) const {
   if (pieces_.empty()) return 0;
   // First knot with time > t; the piece starts one before it.

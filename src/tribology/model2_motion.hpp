@@ -53,6 +53,10 @@ class Model2Motion final : public Motion {
   //! the probe spacing (v_r grazing zero) can be missed. Event::asperity is 0.
   [[nodiscard]] std::vector<Event> relative_velocity_events(double belt_velocity_m_per_s) const;
 
+  //! Hands the knots and pieces back (for reuse by the next integration); the motion is
+  //! empty afterwards and must not be evaluated.
+  [[nodiscard]] Model2Integration release() &&;
+
   [[nodiscard]] std::size_t knot_count() const { return knots_.size(); }
   [[nodiscard]] const MotionKnot& knot(std::size_t i) const { return knots_[i]; }
 
