@@ -152,7 +152,11 @@ struct SummedCircuitSolver {
   const CircuitParams& params;
   double load_conductance = 0.0;
   double base_capacitance = 0.0;  // C_L + sum eps0 w l / d0
-  std::vector<NodeWeights> regular;  // weights of the nodes of an interval without kinks
+  // Weights of the nodes of an interval without kinks (in step order): value and s-slope
+  // of the Hermite quintic, six per node; and the nodes' C, S, alpha of the interval at hand.
+  std::vector<NodeWeights> node_weights;
+  std::vector<double> value_weights, slope_weights;
+  std::vector<double> node_capacitance, node_source, node_alpha;
   std::vector<std::size_t> exception_order;  // exceptions sorted by interval
   std::size_t next = 0;  // position in exception_order
 
@@ -170,8 +174,18 @@ struct SummedCircuitSolver {
           w.value(4) = 1.0;
           w.slope(5) = 1.0;
         }
-        regular.push_back(w);
+        node_weights.push_back(w);
       }
+    // Six per node: weights[6 n + i].
+    const std::size_t nodes = node_weights.size();
+    for (std::size_t n = 0; n < nodes; ++n)
+      for (Eigen::Index i = 0; i < 6; ++i) {
+        value_weights.push_back(node_weights[n].value(i));
+        slope_weights.push_back(node_weights[n].slope(i));
+      }
+    node_capacitance.resize(nodes);
+    node_source.resize(node_capacitance.size());
+    node_alpha.resize(node_capacitance.size());
     exception_order.resize(s.exceptions_.size());
     std::iota(exception_order.begin(), exception_order.end(), 0);
     std::stable_sort(exception_order.begin(), exception_order.end(), [&](std::size_t a, std::size_t b) {
@@ -183,13 +197,15 @@ struct SummedCircuitSolver {
   //! last stage of (I - h A diag(alpha)) U = u 1 + h A beta, by Gaussian elimination. For
   //! alpha <= 0 the matrix is I plus h |alpha| times A's columns (A is invertible, condition
   //! ~10), so elimination in order needs no pivoting (multipliers stay below ~2).
-  static double radau_step(double u, double h, const double (&alpha)[STAGES], const double (&beta)[STAGES]) {
+  //! `ha` is h A.
+  static double radau_step(double u, const double (&ha)[STAGES][STAGES], const double (&alpha)[STAGES],
+                           const double (&beta)[STAGES]) {
     double m[STAGES][STAGES], r[STAGES];
     for (int i = 0; i < STAGES; ++i) {
       r[i] = u;
       for (int k = 0; k < STAGES; ++k) {
-        m[i][k] = (i == k ? 1.0 : 0.0) - h * RADAU_A(i, k) * alpha[k];
-        r[i] += h * RADAU_A(i, k) * beta[k];
+        m[i][k] = (i == k ? 1.0 : 0.0) - ha[i][k] * alpha[k];
+        r[i] += ha[i][k] * beta[k];
       }
     }
     for (int pivot = 0; pivot < STAGES - 1; ++pivot)
@@ -201,30 +217,50 @@ struct SummedCircuitSolver {
     return r[STAGES - 1] / m[STAGES - 1][STAGES - 1];
   }
 
+  static void scaled_radau_matrix(double h, double (&ha)[STAGES][STAGES]) {
+    for (int i = 0; i < STAGES; ++i)
+      for (int k = 0; k < STAGES; ++k) ha[i][k] = h * RADAU_A(i, k);
+  }
+
   double alpha_at(double capacitance, double t) const {
     if (capacitance <= 0.0) throw_capacitance_not_positive(t, capacitance);
     return -load_conductance / capacitance;
   }
 
   //! U over interval j (from U at its start), no kink inside.
-  double regular_interval(std::size_t j, double u) const {
+  double regular_interval(std::size_t j, double u) {
     const double t0 = sums.times_[j], h = sums.times_[j + 1] - t0;
-    Eigen::Matrix<double, 6, 1> p, dp, kk;
-    // P' data over h (slopes in s are h P'): S = (1/h) d/ds P.
-    p << sums.p_[j] / h, sums.dp_right_[j], sums.p_mid_[j] / h, sums.dp_mid_[j], sums.p_[j + 1] / h, sums.dp_left_[j + 1];
-    kk << sums.k_[j], h * sums.dk_right_[j], sums.k_mid_[j], h * sums.dk_mid_[j], sums.k_[j + 1], h * sums.dk_left_[j + 1];
-    const double hs = h / static_cast<double>(params.substeps);
-    double alpha[STAGES], beta[STAGES];
-    std::size_t node = 0;
-    for (std::size_t m = 0; m < params.substeps; ++m) {
-      for (int st = 0; st < STAGES; ++st, ++node) {
-        const NodeWeights& w = regular[node];
-        const double capacitance = base_capacitance - w.value.dot(kk);
-        alpha[st] = alpha_at(capacitance, t0 + h * (static_cast<double>(m) + RADAU_C[static_cast<std::size_t>(st)]) /
-                                                     static_cast<double>(params.substeps));
-        beta[st] = w.slope.dot(p);
+    // P' data over h (slopes in s are h P'): S = (1/h) d/ds P; K's slopes times h.
+    const double p[6] = {sums.p_[j] / h, sums.dp_right_[j], sums.p_mid_[j] / h, sums.dp_mid_[j], sums.p_[j + 1] / h,
+                         sums.dp_left_[j + 1]};
+    const double kk[6] = {sums.k_[j], h * sums.dk_right_[j], sums.k_mid_[j], h * sums.dk_mid_[j], sums.k_[j + 1],
+                          h * sums.dk_left_[j + 1]};
+    const std::size_t nodes = node_capacitance.size();
+    // C and S at every node, six weights each (in step order).
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const double* wv = value_weights.data() + 6 * n;
+      const double* ws = slope_weights.data() + 6 * n;
+      node_capacitance[n] = base_capacitance - (wv[0] * kk[0] + wv[1] * kk[1] + wv[2] * kk[2] + wv[3] * kk[3] +
+                                                wv[4] * kk[4] + wv[5] * kk[5]);
+      node_source[n] = ws[0] * p[0] + ws[1] * p[1] + ws[2] * p[2] + ws[3] * p[3] + ws[4] * p[4] + ws[5] * p[5];
+    }
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (!(node_capacitance[n] > 0.0)) {
+        const std::size_t m = n / STAGES;
+        (void)alpha_at(node_capacitance[n],
+                       t0 + h * (static_cast<double>(m) + RADAU_C[n % STAGES]) / static_cast<double>(params.substeps));
       }
-      u = radau_step(u, hs, alpha, beta);
+      node_alpha[n] = -load_conductance / node_capacitance[n];
+    }
+    double ha[STAGES][STAGES];
+    scaled_radau_matrix(h / static_cast<double>(params.substeps), ha);
+    double alpha[STAGES], beta[STAGES];
+    for (std::size_t m = 0; m < params.substeps; ++m) {
+      for (std::size_t st = 0; st < STAGES; ++st) {
+        alpha[st] = node_alpha[STAGES * m + st];
+        beta[st] = node_source[STAGES * m + st];
+      }
+      u = radau_step(u, ha, alpha, beta);
     }
     return u;
   }
@@ -294,7 +330,9 @@ struct SummedCircuitSolver {
           alpha[st] = alpha_at(base_capacitance - k_sum, tn);
           beta[st] = source;
         }
-        u = radau_step(u, hs, alpha, beta);
+        double ha[STAGES][STAGES];
+        scaled_radau_matrix(hs, ha);
+        u = radau_step(u, ha, alpha, beta);
         t_step = t_next;
       }
       t = piece_end;
