@@ -11,6 +11,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
+#include "tribology/hermite.hpp"
 
 namespace stengmc {
 
@@ -90,6 +91,7 @@ void ElementSums::reset(std::span<const double> times_s) {
   for (auto* v : {&p_mid_, &k_mid_, &dp_mid_, &dk_mid_}) v->assign(intervals, 0.0);
   exceptions_.clear();
   element_kinks_.clear();
+  fine_tables_.clear();
 }
 
 bool ElementSums::add(const StengElement& element, const MotionSamples& samples, const Motion& motion) {
@@ -130,11 +132,25 @@ bool ElementSums::add(const StengElement& element, const MotionSamples& samples,
   mark(kinks, 1);
   mark(fine, 2);
   const std::size_t kinks_index = element_kinks_.size();
-  bool has_exception = false;
+  bool has_kink = false;
   for (std::size_t j = 0; j + 1 < m; ++j) {
     if (flags[j] != 0) {
-      exceptions_.push_back({j, &motion, kinks_index, (flags[j] & 2) != 0, cw, g, x[j], v[j], x[j + 1], v_left[j + 1]});
-      has_exception = true;
+      Exception e{j, &motion, 0, kinks_index, (flags[j] & 2) != 0, cw, g, x[j], v[j], x[j + 1], v_left[j + 1]};
+      if ((flags[j] & 1) != 0) {
+        has_kink = true;
+      } else {  // fine structure only: record it, the motion may go
+        e.motion = nullptr;
+        e.table = fine_tables_.size();
+        const double ta = times_[j], h = times_[j + 1] - ta;
+        for (std::size_t k = 0; k <= FINE_STRUCTURE_POINTS; ++k) {
+          const bool end = k == FINE_STRUCTURE_POINTS;
+          const PhasePoint q = motion.at(end ? times_[j + 1] : ta + h * static_cast<double>(k) / FINE_STRUCTURE_POINTS,
+                                         end ? Side::left : Side::right);
+          fine_tables_.push_back(q.x_m);
+          fine_tables_.push_back(q.v_m_per_s);
+        }
+      }
+      exceptions_.push_back(e);
       continue;
     }
     p_mid_[j] += cw * samples.mid_x_m[j];
@@ -142,8 +158,8 @@ bool ElementSums::add(const StengElement& element, const MotionSamples& samples,
     dp_mid_[j] += cw * samples.mid_v_m_per_s[j];
     dk_mid_[j] += g * samples.mid_v_m_per_s[j];
   }
-  if (has_exception) element_kinks_.push_back(kinks);
-  return has_exception;
+  if (has_kink) element_kinks_.push_back(kinks);
+  return has_kink;
 }
 
 //! The solve, with the tables it shares between intervals.
@@ -222,6 +238,18 @@ struct SummedCircuitSolver {
       for (int k = 0; k < STAGES; ++k) ha[i][k] = h * RADAU_A(i, k);
   }
 
+  //! An element's fine-structure table at t in the interval [ta, ta + h], by cubic Hermite
+  //! interpolation between the two recorded points around it.
+  PhasePoint fine_table_at(const ElementSums::Exception& ex, double ta, double h, double t) const {
+    const double* table = sums.fine_tables_.data() + ex.table;
+    const double spacing = h / FINE_STRUCTURE_POINTS;
+    const double position = (t - ta) / spacing;
+    const auto k = static_cast<std::size_t>(std::clamp(std::floor(position), 0.0, FINE_STRUCTURE_POINTS - 1.0));
+    const MotionKnot a{0.0, table[2 * k], table[2 * k + 1], 0.0};
+    const MotionKnot b{spacing, table[2 * k + 2], table[2 * k + 3], 0.0};
+    return cubic_hermite(a, b, (position - static_cast<double>(k)) * spacing);
+  }
+
   double alpha_at(double capacitance, double t) const {
     if (capacitance <= 0.0) throw_capacitance_not_positive(t, capacitance);
     return -load_conductance / capacitance;
@@ -284,6 +312,7 @@ struct SummedCircuitSolver {
       k1 -= ex.capacitance_per_m * ex.x_end;
       dk1 -= ex.capacitance_per_m * ex.v_end;
       fine = fine || ex.fine;
+      if (ex.motion == nullptr) continue;  // no kink here, only fine structure
       const std::vector<double>& kinks = sums.element_kinks_[ex.kinks];
       for (auto it = std::upper_bound(kinks.begin(), kinks.end(), ta); it != kinks.end() && *it < tb; ++it)
         cuts.push_back(*it);
@@ -323,7 +352,7 @@ struct SummedCircuitSolver {
           regular_at(tn, source, k_sum);
           for (std::size_t e = first; e < last; ++e) {
             const ElementSums::Exception& ex = sums.exceptions_[exception_order[e]];
-            const PhasePoint q = ex.motion->at(tn, side);
+            const PhasePoint q = ex.motion != nullptr ? ex.motion->at(tn, side) : fine_table_at(ex, ta, h, tn);
             source += ex.charge_per_m * q.v_m_per_s;
             k_sum += ex.capacitance_per_m * q.x_m;
           }

@@ -37,6 +37,8 @@ class Progress;
 //! it the four-asperity chain's V error at v_b = 10 m/s falls from 1.1e-6 (no refinement)
 //! to 1.8e-7, below which 8 changes nothing (test_chain_reference).
 inline constexpr std::size_t FINE_STRUCTURE_REFINEMENT = 4;
+//! Points per sample interval at which an element with fine structure there is recorded.
+inline constexpr std::size_t FINE_STRUCTURE_POINTS = 64;
 
 class ElementSums {
  public:
@@ -48,11 +50,12 @@ class ElementSums {
   void reset(std::span<const double> times_s);
 
   //! Adds one element driven by `motion`, whose samples on the grid (with midpoints) are
-  //! `samples`. Where its motion has a breakpoint or fine structure (Motion::fine_structure)
-  //! strictly inside an interval, it is evaluated exactly there, the interval's steps split
-  //! at every such element's breakpoints and, around fine structure, FINE_STRUCTURE_REFINEMENT
-  //! times as many; `motion` must then outlive the solve.
-  //! @return whether it has such intervals (then `motion` must outlive the solve)
+  //! `samples`. Where its motion has a breakpoint strictly inside an interval, it is
+  //! evaluated exactly there and the interval's steps split at every such element's
+  //! breakpoints (`motion` must then outlive the solve); where it has fine structure
+  //! (Motion::fine_structure), it is recorded densely over the interval now, and the
+  //! interval takes FINE_STRUCTURE_REFINEMENT times as many steps.
+  //! @return whether `motion` must outlive the solve (it has a breakpoint inside an interval)
   bool add(const StengElement& element, const MotionSamples& samples, const Motion& motion);
 
   [[nodiscard]] std::span<const double> times() const { return times_; }
@@ -64,7 +67,12 @@ class ElementSums {
   //! An element evaluated exactly over one interval.
   struct Exception {
     std::size_t interval = 0;
+    //! The motion, evaluated exactly at every node (intervals with a kink of it), or none:
+    //! then its fine structure is read from a table of FINE_STRUCTURE_POINTS + 1 equally
+    //! spaced (x, x') over the interval, taken when it was added, by cubic Hermite
+    //! interpolation (the motion itself need not outlive add()).
     const Motion* motion = nullptr;
+    std::size_t table = 0;           // first of its (x, x') pairs in fine_tables_
     std::size_t kinks = 0;           // its breakpoints: element_kinks_[kinks]
     bool fine = false;               // it has fine structure here (Motion::fine_structure)
     double charge_per_m = 0.0;       // sigma w [C/m]
@@ -83,6 +91,7 @@ class ElementSums {
   std::vector<double> p_mid_, k_mid_, dp_mid_, dk_mid_;
   std::vector<Exception> exceptions_;  // in the order added
   std::vector<std::vector<double>> element_kinks_;  // breakpoints of the elements with exceptions
+  std::vector<double> fine_tables_;  // (x, x') pairs of the fine-structure tables
 };
 
 //! The solution on the grid's first `samples` times.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tribology/events.hpp"
+#include "tribology/hermite.hpp"
 #include "tribology/model2_integrator.hpp"
 #include "tribology/motion.hpp"
 
@@ -71,17 +72,5 @@ class Model2Motion final : public Motion {
   double w0_;
   std::vector<double> breakpoints_;
 };
-
-//! The quintic Hermite of (x, x', x'') at knots a and b, at t [s] (extrapolates outside).
-PhasePoint quintic_hermite(const MotionKnot& a, const MotionKnot& b, double t_s);
-
-//! The cubic Hermite of (x, x') at knots a and b, at t [s] (extrapolates outside).
-PhasePoint cubic_hermite(const MotionKnot& a, const MotionKnot& b, double t_s);
-
-//! Its velocity as a polynomial in s = (t - t_a) / (t_b - t_a), as below (degree 2).
-std::array<double, 5> cubic_hermite_velocity(const MotionKnot& a, const MotionKnot& b);
-
-//! Its velocity as a quartic in s = (t - t_a) / (t_b - t_a): x'(s) = sum_n c[n] s^n [m/s].
-std::array<double, 5> quintic_hermite_velocity(const MotionKnot& a, const MotionKnot& b);
 
 }  // namespace stengmc
