@@ -72,8 +72,9 @@ constexpr std::size_t MAX_STEPS = 50'000'000;
 // N mu_s (2/pi) s, far from linear near breakaway) stays with RODAS4, and so does a step
 // the propagator cannot take at least PROPAGATOR_MIN_STEP long.
 constexpr double PROPAGATOR_ZETA_MAX = 0.5;
-// Longest step: a quarter of the undamped period.
-constexpr double PROPAGATOR_MAX_STEP = 1.5707963267948966;
+// Longest step: half the undamped period (the remainder is then fitted over at most one
+// of its swings; the error control decides below that).
+constexpr double PROPAGATOR_MAX_STEP = 3.141592653589793;
 constexpr double PROPAGATOR_MIN_STEP = 0.1;
 constexpr double PROPAGATOR_MAX_GROWTH = 4.0;
 // After the propagator gave way, RODAS4 steps before it is tried again; doubles with each

@@ -221,12 +221,34 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       const double t = 0.5 * (times_s[i] + times_s[i + 1]);
       return t <= piece_end ? on_piece(piece, t) : on_piece(piece + 1, t);
     };
-    if (pieces_.empty() || pieces_[piece].kind != PieceKind::oscillator) {
+    if (pieces_.empty()) {
       for (; j < end; ++j) {
-        const PhasePoint s = on_piece(piece, times_s[j]);
-        out.x_m[j] = s.x_m;
-        out.v_m_per_s[j] = s.v_m_per_s;
-        if (midpoints && j + 1 < count) store_mid(j, midpoint(j));
+        out.x_m[j] = knots_[0].x_m;
+        out.v_m_per_s[j] = knots_[0].v_m_per_s;
+        if (midpoints && j + 1 < count) store_mid(j, {knots_[0].x_m, knots_[0].v_m_per_s});
+      }
+    } else if (pieces_[piece].kind != PieceKind::oscillator) {
+      // A Hermite piece as polynomials in s = (t - t_a) / h: x' = sum_n c_n s^n, and
+      // x = x_a + h sum_n c_n s^(n+1) / (n+1), by Horner.
+      const MotionKnot& a = knots_[piece];
+      const MotionKnot& b = knots_[piece + 1];
+      const std::array<double, 5> c =
+          pieces_[piece].kind == PieceKind::quintic ? quintic_hermite_velocity(a, b) : cubic_hermite_velocity(a, b);
+      const double h = b.t_s - a.t_s;
+      const std::array<double, 5> xc{h * c[0], h * c[1] / 2.0, h * c[2] / 3.0, h * c[3] / 4.0, h * c[4] / 5.0};
+      auto at_s = [&](double s_) {
+        const double v = c[0] + s_ * (c[1] + s_ * (c[2] + s_ * (c[3] + s_ * c[4])));
+        const double x = a.x_m + s_ * (xc[0] + s_ * (xc[1] + s_ * (xc[2] + s_ * (xc[3] + s_ * xc[4]))));
+        return PhasePoint{x, v};
+      };
+      for (; j < end; ++j) {
+        const PhasePoint p = at_s((times_s[j] - a.t_s) / h);
+        out.x_m[j] = p.x_m;
+        out.v_m_per_s[j] = p.v_m_per_s;
+        if (midpoints && j + 1 < count) {
+          const double t_mid = 0.5 * (times_s[j] + times_s[j + 1]);
+          store_mid(j, t_mid <= piece_end ? at_s((t_mid - a.t_s) / h) : midpoint(j));
+        }
       }
     } else {
       const MotionPiece& osc = pieces_[piece];
@@ -251,28 +273,30 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       const double cancellation = (std::abs(z) + std::abs(dz)) / std::max(scale, 1e-300);
       const std::size_t reanchor = cancellation <= 1.0 ? REANCHOR_POINTS
           : std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(REANCHOR_POINTS) / cancellation));
-      for (std::size_t since_anchor = reanchor; j < end; ++j, ++since_anchor) {
-        const double tau = w0_ * (times_s[j] - a.t_s);
-        if (since_anchor == reanchor) {
-          homogeneous_start(a, osc, w0_, z, dz);
-          OscillatorFlow::over(osc.zeta, tau).apply(z, dz);
-          since_anchor = 0;
-        } else {
-          full_step.apply(z, dz);
-        }
-        double xp = 0.0, vp = 0.0;
-        particular(tau, xp, vp);
-        out.x_m[j] = osc.centre_m + z + xp;
-        out.v_m_per_s[j] = w0_ * (dz + vp);
-        if (midpoints && j + 1 < count) {
-          const double t_mid = 0.5 * (times_s[j] + times_s[j + 1]);
-          if (t_mid <= piece_end) {
-            double zm = z, dzm = dz;
-            half_step.apply(zm, dzm);
-            particular(tau + 0.5 * w0_step, xp, vp);
-            store_mid(j, {osc.centre_m + zm + xp, w0_ * (dzm + vp)});
-          } else {
-            store_mid(j, midpoint(j));
+      const double centre = osc.centre_m;
+      while (j < end) {
+        // Anchor in closed form, then walk up to `reanchor` samples with the flow.
+        const double tau0 = w0_ * (times_s[j] - a.t_s);
+        homogeneous_start(a, osc, w0_, z, dz);
+        OscillatorFlow::over(osc.zeta, tau0).apply(z, dz);
+        const std::size_t block_end = std::min(end, j + reanchor);
+        for (std::size_t k = 0; j < block_end; ++j, ++k) {
+          if (k > 0) full_step.apply(z, dz);
+          const double tau = tau0 + static_cast<double>(k) * w0_step;
+          double xp = 0.0, vp = 0.0;
+          particular(tau, xp, vp);
+          out.x_m[j] = centre + z + xp;
+          out.v_m_per_s[j] = w0_ * (dz + vp);
+          if (midpoints && j + 1 < count) {
+            const double t_mid = 0.5 * (times_s[j] + times_s[j + 1]);
+            if (t_mid <= piece_end) {
+              double zm = z, dzm = dz;
+              half_step.apply(zm, dzm);
+              particular(tau + 0.5 * w0_step, xp, vp);
+              store_mid(j, {centre + zm + xp, w0_ * (dzm + vp)});
+            } else {
+              store_mid(j, midpoint(j));
+            }
           }
         }
       }
