@@ -150,8 +150,14 @@ struct ProcessRun {
   double max_rss_mb = 0.0;  //!< peak resident memory [MiB]
 };
 
-//! Runs `arguments` (argv[0] is the program) with stdout and stderr to /dev/null.
-inline ProcessRun run_process(const std::vector<std::string>& arguments) {
+//! Runs `arguments` (argv[0] is the program) with stdout and stderr to /dev/null. The
+//! peak memory comes from GNU time running it (/usr/bin/time, when present): the kernel
+//! carries a process's peak over exec, so a child started from this (large) process would
+//! report at least this process's own size.
+inline ProcessRun run_process(std::vector<std::string> arguments) {
+  const fs::path memory_file = fs::temp_directory_path() / ("stengmc_rss_" + std::to_string(::getpid()));
+  const bool timed = fs::exists("/usr/bin/time");
+  if (timed) arguments.insert(arguments.begin(), {"/usr/bin/time", "-f", "%M", "-o", memory_file.string()});
   std::vector<char*> argv;
   for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -173,6 +179,12 @@ inline ProcessRun run_process(const std::vector<std::string>& arguments) {
   run.cpu_s = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
               1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   run.max_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  if (timed) {
+    std::ifstream in(memory_file);
+    double kib = 0.0;
+    if (in >> kib) run.max_rss_mb = kib / 1024.0;
+    fs::remove(memory_file);
+  }
   return run;
 }
 

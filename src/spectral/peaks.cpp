@@ -221,9 +221,18 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
     windowed[n] = analyzer.window()[n] * signal[n];
     window_sum += analyzer.window()[n];
   }
+  // Candidates too weak to survive a later dynamic-range cut (options.skip_below_db): the
+  // refined amplitude exceeds the bin's by at most the scalloping loss (3.9 dB for the
+  // rectangular window) plus interference; 12 dB covers both. Candidates come strongest
+  // first, so the first one below ends the loop.
+  constexpr double REFINEMENT_GAIN_ALLOWANCE_DB = 12.0;
+  const double weakest_refined =
+      options.skip_below_db > 0.0 && !candidates.empty()
+          ? a[candidates.front()] * std::pow(10.0, -(options.skip_below_db + REFINEMENT_GAIN_ALLOWANCE_DB) / 20.0)
+          : 0.0;
   std::vector<Peak> peaks;
   for (std::size_t bin : candidates) {
-    if (peaks.size() >= options.max_peaks) break;
+    if (peaks.size() >= options.max_peaks || a[bin] < weakest_refined) break;
     const double centre = spectrum.frequency_hz[bin];
     // Of two peaks closer than min_separation the weaker goes, as with scipy's `distance`.
     const bool too_close = std::any_of(peaks.begin(), peaks.end(), [&](const Peak& k) {
