@@ -1,7 +1,7 @@
 // End-to-end benchmark of the Fig. 6 case (4 asperities, Model 2, 50 us at 100 MHz,
 // v_b = 1 and 10 m/s; l = 50 um so the whole circuit is solved): study -> tribology ->
-// circuit (the study's [spectrum] left out), median of 5 runs on one core. Reference in the same process: the same
-// tribology with an explicit Dormand-Prince 5(4) (the paper's ODE45 method; Boost.Odeint)
+// circuit (the study's [spectrum] left out), median of 5 runs on one core. Reference in
+// the same process: the same tribology with an explicit Dormand-Prince 5(4) (the paper's ODE45 method; Boost.Odeint)
 // at the same tolerance, which shows what the stiff sticking phase costs an explicit method.
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
