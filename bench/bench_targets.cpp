@@ -159,18 +159,19 @@ double cpu_per_realisation(const stengmc::Study& base, std::uint64_t count) {
   return (bench::thread_cpu_seconds() - start) / static_cast<double>(count);
 }
 
-//! CPU per realisation of the base revision: its process for two realisations minus its
-//! process for one (start-up, summary and file writing cancel).
+//! CPU per realisation of the base revision: its process for 1 + `extra` realisations
+//! minus its process for one, over `extra` (start-up, summary and file writing cancel).
 double baseline_cpu(const Options& o, const bench::StudyFactory& factory, int count, double duration_s,
-                    const fs::path& scratch) {
+                    const fs::path& scratch, std::uint64_t extra) {
   double cpu[2];
-  for (std::uint64_t r = 1; r <= 2; ++r) {
+  int k = 0;
+  for (const std::uint64_t r : {std::uint64_t{1}, 1 + extra}) {
     const bench::ProcessRun run = bench::run_process({o.baseline, "run", factory.file(count, duration_s, r).string(), "-j",
                                                       "1", "--restart", "-o", (scratch / "b.h5").string()});
     if (run.exit_status != 0) throw std::runtime_error(o.baseline + ": realisation failed");
-    cpu[r - 1] = run.cpu_s;
+    cpu[k++] = run.cpu_s;
   }
-  return cpu[1] - cpu[0];
+  return (cpu[1] - cpu[0]) / static_cast<double>(extra);
 }
 
 void scaling(const Options& o, const bench::StudyFactory& factory, const fs::path& scratch) {
@@ -201,10 +202,10 @@ void scaling(const Options& o, const bench::StudyFactory& factory, const fs::pat
          "exponent <= 1.05", "", slope_t <= 1.05};
   if (!o.baseline.empty()) {
     // The base revision on the ends of both ranges.
-    const double n16 = baseline_cpu(o, factory, 16, 50e-6, scratch);
-    const double n1024 = baseline_cpu(o, factory, 1024, 50e-6, scratch);
-    const double t12 = baseline_cpu(o, factory, 20, 12.5e-6, scratch);
-    const double t200 = baseline_cpu(o, factory, 20, 200e-6, scratch);
+    const double n16 = baseline_cpu(o, factory, 16, 50e-6, scratch, 8);
+    const double n1024 = baseline_cpu(o, factory, 1024, 50e-6, scratch, 1);
+    const double t12 = baseline_cpu(o, factory, 20, 12.5e-6, scratch, 16);
+    const double t200 = baseline_cpu(o, factory, 20, 200e-6, scratch, 4);
     const double old_n = std::log(n1024 / n16) / std::log(1024.0 / 16.0);
     const double old_t = std::log(t200 / t12) / std::log(16.0);
     std::printf("   base: n = 16 %.1f ms, n = 1024 %.0f ms (n^%.2f); T = 12.5 us %.1f ms, 200 us %.1f ms (T^%.2f)\n",
@@ -280,9 +281,22 @@ void single_asperity(const Options& o) {
       (void)stengmc::run_study(study, stengmc::RunOptions{.show_progress = false});
       pipeline.push_back(bench::thread_cpu_seconds() - start);
     }
+    // With one circuit substep per sample (chain accuracy still V ~1e-6, test_chain_reference).
+    stengmc::CircuitParams coarse = circuit;
+    coarse.substeps = 1;
+    std::vector<double> per_call_coarse;
+    for (double k = 20.0; k <= 300.0; k += 20.0) {
+      stengmc::Asperity a;
+      a.stiffness_n_per_m = k;
+      a.element.length_m = 50e-6;
+      const double start = bench::thread_cpu_seconds();
+      (void)stengmc::voltage_response({&a, 1}, model, coarse, grid, workspace);
+      per_call_coarse.push_back(bench::thread_cpu_seconds() - start);
+    }
     const double m = bench::median(per_call), p = bench::median(pipeline);
-    std::printf("   v_b = %4.1f m/s: median %.3f ms per call (%zu calls); run_study with traces %.3f ms (%.1fx)\n", vb,
-                1e3 * m, per_call.size(), 1e3 * p, p / m);
+    std::printf("   v_b = %4.1f m/s: median %.3f ms per call (%zu calls; %.3f ms with circuit substeps = 1); "
+                "run_study with traces %.3f ms (%.1fx)\n",
+                vb, 1e3 * m, per_call.size(), 1e3 * bench::median(per_call_coarse), 1e3 * p, p / m);
     rows.push_back({fmt("single asperity 100 us, v_b = %g m/s", vb), fmt("%.3f ms per call", 1e3 * m), "cheap (no target)",
                     fmt("%.1fx a full run_study", p / m), true});
   }
