@@ -2,7 +2,7 @@
 // A random surface with a fixed count of asperities (surfaces/lognormal_count.toml, its
 // count rewritten), Model 2, v_b = 10 m/s, 100 MHz, FFT spectra only, run by run_ensemble:
 //   1. parallel efficiency at 2 threads: T1 / (2 T2) on the same ensemble, medians of 3;
-//   2. the issue's headline: 1000 realisations x 20 asperities x 50 us on 2 threads
+//   2. the headline: 1000 realisations x 20 asperities x 50 us on 2 threads
 //      (--quick or STENGMC_BENCH_QUICK=1: 100 realisations, extrapolated x10);
 //   3. cost growth: time per realisation against the asperity count and the duration,
 //      with fitted log-log slopes;
@@ -25,6 +25,7 @@
 
 #include <unistd.h>
 
+#include "bench_support.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/run_realisation.hpp"
 #include "io/study.hpp"
@@ -37,104 +38,14 @@
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::loglog_slope;
+using bench::machine_busy_seconds;
+using bench::median;
 
 constexpr int REPETITIONS = 3;
-constexpr double HEADLINE_TARGET_S = 60.0;
+constexpr double HEADLINE_TARGET_S = 10.0;
 constexpr double EFFICIENCY_TARGET = 0.85;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
-//! A scratch folder for surface files and journals, removed at exit.
-struct ScratchDir {
-  fs::path path;
-  ScratchDir() {
-    path = fs::temp_directory_path() / ("stengmc_bench_ensemble_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-//! Builds ensemble studies over surfaces/lognormal_count.toml with `count` asperities.
-class StudyFactory {
- public:
-  explicit StudyFactory(const fs::path& scratch)
-      : scratch_(scratch),
-        surface_template_(read_text(fs::path(STENGMC_SOURCE_DIR) / "surfaces" / "lognormal_count.toml")) {
-    if (surface_template_.find("\ncount = 4") == std::string::npos)
-      throw std::runtime_error("surfaces/lognormal_count.toml no longer has a line 'count = 4'");
-  }
-
-  stengmc::Study make(int count, double duration_s, std::uint64_t realisations) const {
-    const fs::path surface = scratch_ / ("surface_n" + std::to_string(count) + ".toml");
-    if (!fs::exists(surface)) {
-      std::string text = surface_template_;
-      const std::string from = "\ncount = 4";
-      text.replace(text.find(from), from.size(), "\ncount = " + std::to_string(count));
-      write_text(surface, text);
-    }
-    char duration[32];
-    std::snprintf(duration, sizeof duration, "%.17g", duration_s);
-    const std::string text = std::string("seed = 1\n") + "duration_s = " + duration +
-                             "\n"
-                             "sample_rate_hz = 100e6\n"
-                             "[model]\n"
-                             "kind = \"model2\"\n"
-                             "belt_velocity_m_per_s = 10\n"
-                             "[surface]\n"
-                             "file = \"" +
-                             surface.string() +
-                             "\"\n"
-                             "[domain]\n"
-                             "policy = \"flag\"\n"
-                             "[spectrum]\n"
-                             "window = \"hann\"\n"
-                             "start_s = 5e-6\n"
-                             "prominence_over_floor = 10\n"
-                             "min_frequency_hz = 100e3\n"
-                             "high_resolution = false\n"
-                             "[ensemble]\n"
-                             "realisations = " +
-                             std::to_string(realisations) +
-                             "\n"
-                             "trace_realisations = []\n";
-    return stengmc::parse_study(text, (scratch_ / "study.toml").string(), std::nullopt);
-  }
-
- private:
-  fs::path scratch_;
-  std::string surface_template_;
-};
-
-//! CPU time the whole machine spent busy so far (all processes, /proc/stat) [s]; 0 if unknown.
-double machine_busy_seconds() {
-  std::ifstream in("/proc/stat");
-  std::string cpu;
-  double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
-  if (!(in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal) || cpu != "cpu") return 0.0;
-  return (user + nice + system + irq + softirq + steal) / static_cast<double>(::sysconf(_SC_CLK_TCK));
-}
 
 struct Timing {
   double wall_s = 0.0;  //!< wall time of run_ensemble
@@ -187,20 +98,6 @@ Timing run_median(const stengmc::Study& study, const fs::path& scratch, int thre
   return last;
 }
 
-//! Least-squares slope of log(y) against log(x).
-double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(y[i]);
-    sx += lx;
-    sy += ly;
-    sxx += lx * lx;
-    sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 bool quick_requested(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--quick") return true;
@@ -214,8 +111,8 @@ int main(int argc, char** argv) try {
   const bool quick = quick_requested(argc, argv);
   const auto program_start = Clock::now();
   const unsigned cores = std::thread::hardware_concurrency();
-  ScratchDir scratch;
-  const StudyFactory factory(scratch.path);
+  bench::ScratchDir scratch("bench_ensemble");
+  const bench::StudyFactory factory(STENGMC_SOURCE_DIR, scratch.path);
 
   std::printf("Ensemble benchmark: lognormal_count surface (fixed count n), Model 2, v_b = 10 m/s, 100 MHz,\n"
               "FFT spectra only (Hann, no ESPRIT), domain policy flag; run_ensemble without progress.\n");
@@ -310,7 +207,8 @@ int main(int argc, char** argv) try {
       const auto a = Clock::now();
       const stengmc::Study study = stengmc::study_for_realisation(base, id);
       const auto b = Clock::now();
-      const stengmc::RunResult result = stengmc::run_study(study, stengmc::RunOptions{.show_progress = false});
+      const stengmc::RunResult result =
+          stengmc::run_study(study, stengmc::RunOptions{.show_progress = false, .keep_traces = false});
       const auto c = Clock::now();
       stengmc::run_realisation(base, id, false);
       const auto d = Clock::now();
@@ -340,7 +238,7 @@ int main(int argc, char** argv) try {
   std::printf("| measure | value | target |\n|---|---|---|\n");
   std::printf("| parallel efficiency, 2 threads (40 x n = 20 x 50 us) | %.0f %% (T1 %.2f s, T2 %.2f s) | >= 85 %% |\n",
               100 * efficiency, t1, t2);
-  std::printf("| 1000 realisations x n = 20 x 50 us, 2 threads | %.1f s wall%s, %.0f ms CPU / realisation | <= 60 s |\n",
+  std::printf("| 1000 realisations x n = 20 x 50 us, 2 threads | %.1f s wall%s, %.0f ms CPU / realisation | <= 10 s |\n",
               head_total, quick ? " (extrapolated from 100)" : "", 1e3 * head.cpu_s / static_cast<double>(head.records));
   std::printf("| cost vs asperity count n (1..64, 50 us) | ~ n^%.2f (n^%.2f for n >= 8); %.1f ms at n = 1, %.1f ms at n = 64 | |\n",
               slope_n, slope_n_upper, 1e3 * n_y.front(), 1e3 * n_y.back());

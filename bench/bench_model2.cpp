@@ -9,11 +9,12 @@
 
 namespace {
 
-void fig6_tribology(benchmark::State& state, stengmc::FrictionForm form) {
+void fig6_tribology(benchmark::State& state, stengmc::FrictionForm form, bool propagator = true) {
   const stengmc::TimeGrid grid = stengmc::TimeGrid::covering(50e-6, 100e6);
   stengmc::Model2Params params;
   params.belt_velocity_m_per_s = static_cast<double>(state.range(0));
   params.friction_form = form;
+  params.sliding_propagator = propagator;
   std::size_t steps = 0;
   std::size_t rejected = 0;
   for (auto _ : state) {
@@ -37,6 +38,10 @@ void BM_Fig6TribologyConsistent(benchmark::State& state) {
   fig6_tribology(state, stengmc::FrictionForm::consistent);
 }
 void BM_Fig6TribologyLiteral(benchmark::State& state) { fig6_tribology(state, stengmc::FrictionForm::literal); }
+// The previous code path: RODAS4 alone (no sliding propagator).
+void BM_Fig6TribologyRodas4Only(benchmark::State& state) {
+  fig6_tribology(state, stengmc::FrictionForm::consistent, false);
+}
 
 // Both belt velocities, medians of 5 repetitions.
 void fig6_cases(benchmark::internal::Benchmark* b) {
@@ -44,6 +49,7 @@ void fig6_cases(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_Fig6TribologyConsistent)->Apply(fig6_cases);
 BENCHMARK(BM_Fig6TribologyLiteral)->Apply(fig6_cases);
+BENCHMARK(BM_Fig6TribologyRodas4Only)->Apply(fig6_cases);
 
 }  // namespace
 

@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   ngspice
   python3 python3-h5py python3-matplotlib python3-numpy
+  python3-scipy  # bench/compare_scipy.py: the peer for one asperity-run
 )
 
 missing=()

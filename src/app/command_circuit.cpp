@@ -6,7 +6,7 @@
 #include "app/commands.hpp"
 #include "app/limit_options.hpp"
 #include "app/validators.hpp"
-#include "circuit/circuit_solver.hpp"
+#include "circuit/element_sums.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "io/displacement_input.hpp"
@@ -74,7 +74,7 @@ void run(const CircuitOptions& options) {
               options.input.c_str(), input.x_m.size(), input.times_s.size(), options.interpolation.c_str(),
               options.params.load_resistance_ohm, options.params.load_capacitance_f);
   Progress progress("circuit", input.times_s.size());
-  const CircuitResult circuit = solve_circuit(input.elements, pointers, input.times_s, options.params, &progress);
+  const CircuitResult circuit = solve_circuit_streamed(input.elements, pointers, input.times_s, options.params, &progress);
 
   Hdf5Writer file(options.out);
   Provenance provenance;

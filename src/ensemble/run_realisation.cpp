@@ -116,7 +116,7 @@ RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, 
       record.scalar(Scalar::asperity_count) = static_cast<double>(study.asperities.size());
       return record;
     }
-    const RunResult result = run_study(study, RunOptions{.show_progress = false, .limits = limits});
+    const RunResult result = run_study(study, RunOptions{.show_progress = false, .limits = limits, .keep_traces = false});
     const RunSummary summary = summarise(study, result);
     fill_scalars(study, result, summary, record);
     fill_asperities(study, result, summary, record);

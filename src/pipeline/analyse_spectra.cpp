@@ -114,12 +114,14 @@ SpectralResult analyse_spectra(const SpectralInput& input, const SpectrumSetting
     return std::pair{values, mean};
   };
 
-  SpectrumAnalyzer analyzer(result.samples, settings.window, settings.zero_pad_factor);
+  SpectrumAnalyzer& analyzer = thread_spectrum_analyzer(result.samples, settings.window, settings.zero_pad_factor);
   const auto [voltage, mean_voltage] = segment(input.voltage_v, "the voltage");
   result.mean_v = mean_voltage;
   result.voltage = analyzer.analyse(voltage, result.sample_rate_hz);
   result.noise_floor_v = noise_floor(result.voltage);
-  result.peaks = find_peaks(result.voltage, analyzer, voltage, result.sample_rate_hz, settings.peaks);
+  PeakOptions peak_options = settings.peaks;
+  peak_options.skip_below_db = settings.dynamic_range_db;  // cut below, exactly, after refinement
+  result.peaks = find_peaks(result.voltage, analyzer, voltage, result.sample_rate_hz, peak_options);
   keep_within_dynamic_range(result.peaks, settings.dynamic_range_db);
   if (settings.element_currents && input.currents_a)
     for (const auto& current : *input.currents_a)

@@ -6,12 +6,15 @@
 #include <cmath>
 #include <sstream>
 
+#include "circuit/element_sums.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "tribology/domain_check.hpp"
 #include "tribology/imposed_drive.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
+#include "tribology/model2_integrator.hpp"
+#include "tribology/model2_motion.hpp"
 #include "pipeline/measurement_noise.hpp"
 #include "pipeline/slip_fraction.hpp"
 
@@ -38,11 +41,6 @@ std::string describe(const Asperity& a, std::size_t index) {
   return out.str();
 }
 
-Trajectory solve_one(const Study& study, const Asperity& asperity, const TimeGrid& grid) {
-  return study.model == ModelKind::model1 ? solve_model1(asperity, study.model1, grid)
-                                          : solve_model2(asperity, study.model2, grid);
-}
-
 //! Says plainly when a Model 1 asperity never moved: A <= mu_s N / k (paper Eq. 1) and
 //! nothing in its initial state made it slip either. Judged on the solved motion, so an
 //! initial displacement or velocity that does make it slip is not misreported.
@@ -50,9 +48,7 @@ void note_model1_validity(const Study& study, RunResult& result) {
   if (study.model != ModelKind::model1) return;
   for (std::size_t i = 0; i < study.asperities.size(); ++i) {
     const Asperity& a = study.asperities[i];
-    const Trajectory& t = result.trajectories[i];
-    const bool moved = !t.events.empty() || std::any_of(t.v_m_per_s.begin(), t.v_m_per_s.end(), [](double v) { return v != 0.0; });
-    if (moved || model1_can_slip(study.model1, a)) continue;
+    if (result.statistics[i].moved || model1_can_slip(study.model1, a)) continue;
     const double threshold = study.model1.friction.static_coefficient * a.normal_load_n / a.stiffness_n_per_m;
     result.notes.push_back(describe(a, i) + " never slips: the drive amplitude A = " +
                            micro(study.model1.drive_amplitude_m) + " um is not above mu_s N / k = " + micro(threshold) +
@@ -61,39 +57,75 @@ void note_model1_validity(const Study& study, RunResult& result) {
 }
 
 //! A solver that returns NaN or Inf is reported with the asperity, never written.
-void check_finite(const Trajectory& trajectory, const Asperity& a, std::size_t index, const TimeGrid& grid) {
-  for (std::size_t j = 0; j < trajectory.x_m.size(); ++j)
-    if (!std::isfinite(trajectory.x_m[j]) || !std::isfinite(trajectory.v_m_per_s[j]) || !std::isfinite(trajectory.friction_n[j]))
+void check_finite(std::span<const double> x, std::span<const double> v, std::span<const double> friction,
+                  const Asperity& a, std::size_t index, const TimeGrid& grid) {
+  for (std::size_t j = 0; j < x.size(); ++j)
+    if (!std::isfinite(x[j]) || !std::isfinite(v[j]) || (j < friction.size() && !std::isfinite(friction[j])))
       throw ModelError(describe(a, index) + ": the tribology produced a non-finite state at t = " + micro(grid.at(j)) +
                        " us; check the asperity's parameters for physically plausible values");
 }
 
-//! Finds the first time any element's displacement reaches its l; applies the policy.
-std::size_t valid_prefix(const Study& study, const std::vector<const Motion*>& inputs,
-                         const std::vector<std::vector<double>>& input_samples, RunResult& result) {
-  double first_exit = INFINITY;
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const Asperity& a = study.asperities[i];
-    std::optional<double> exit;
-    try {
-      exit = first_domain_exit(*inputs[i], result.times_s, input_samples[i], a.element.length_m);
-    } catch (const ModelError& e) {
-      throw ModelError(describe(a, i) + ": " + e.what());
-    }
-    if (!exit) continue;
-    result.events.push_back({*exit, i, EventKind::domain_exit});
-    const std::string what = describe(a, i) + ": x reaches l = " + micro(a.element.length_m) + " um at t = " +
-                             micro(*exit) + " us; the S-TENG element formulas (MODEL.md §2) hold only for x < l";
-    if (study.domain_policy == DomainPolicy::error)
-      throw ModelError(study.file + ": " + what +
-                       ". Lengthen the element (length_m) or set [domain] policy = \"flag\" to keep the valid part.");
-    result.notes.push_back(what + "; the circuit stops there and the run is marked invalid");
-    first_exit = std::min(first_exit, *exit);
+//! Slip fraction, largest x, rms velocity and the per-sample sliding flags.
+AsperityStatistics statistics_of(const SlidingRule& rule, std::span<const double> x, std::span<const double> v,
+                                 bool has_events) {
+  AsperityStatistics s;
+  s.sliding.resize(v.size());
+  std::size_t sliding = 0;
+  double sum_squares = 0.0;
+  bool moved = has_events;
+  for (std::size_t j = 0; j < v.size(); ++j) {
+    const bool slides = rule.slides(v[j]);
+    s.sliding[j] = slides;
+    sliding += slides ? 1 : 0;
+    sum_squares += v[j] * v[j];
+    moved = moved || v[j] != 0.0;
   }
-  if (std::isinf(first_exit)) return result.times_s.size();
-  result.valid = false;
-  return static_cast<std::size_t>(
-      std::lower_bound(result.times_s.begin(), result.times_s.end(), first_exit) - result.times_s.begin());
+  s.moved = moved;
+  if (!v.empty()) {
+    s.slip_fraction = static_cast<double>(sliding) / static_cast<double>(v.size());
+    s.rms_velocity_m_per_s = std::sqrt(sum_squares / static_cast<double>(v.size()));
+  }
+  s.max_x_m = x.empty() ? 0.0 : *std::max_element(x.begin(), x.end());
+  return s;
+}
+
+//! Which of a run's per-asperity arrays must outlive the asperity's turn.
+struct Keep {
+  bool motion = false;    //!< the dense output (tests, files, and kinks the circuit evaluates)
+  bool x = false, v = false, friction = false;  //!< the sample traces
+  bool circuit_samples = false;  //!< the circuit input's samples, for the element currents
+};
+
+Keep what_to_keep(const Study& study, const RunOptions& options) {
+  if (!options.keep_traces) return {};
+  const OutputTraces& t = study.traces;
+  const bool current_spectra = study.spectrum && study.spectrum->element_currents;
+  return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
+}
+
+//! Finds the first time this element's displacement reaches its l; applies the policy.
+//! Returns the exit time (infinity when none).
+double domain_exit(const Study& study, std::size_t i, const Motion& input, std::span<const double> times,
+                   const MotionSamples& samples, std::span<const double> sampled_x, RunResult& result) {
+  const Asperity& a = study.asperities[i];
+  std::optional<double> exit;
+  try {
+    // Model 1 keeps its own samples (so its outputs stay what they were); Model 2 reads
+    // the velocities from the samples instead of evaluating them again.
+    exit = sampled_x.empty() ? first_domain_exit(input, times, samples, a.element.length_m)
+                             : first_domain_exit(input, times, sampled_x, a.element.length_m);
+  } catch (const ModelError& e) {
+    throw ModelError(describe(a, i) + ": " + e.what());
+  }
+  if (!exit) return INFINITY;
+  result.events.push_back({*exit, i, EventKind::domain_exit});
+  const std::string what = describe(a, i) + ": x reaches l = " + micro(a.element.length_m) + " um at t = " +
+                           micro(*exit) + " us; the S-TENG element formulas (MODEL.md §2) hold only for x < l";
+  if (study.domain_policy == DomainPolicy::error)
+    throw ModelError(study.file + ": " + what +
+                     ". Lengthen the element (length_m) or set [domain] policy = \"flag\" to keep the valid part.");
+  result.notes.push_back(what + "; the circuit stops there and the run is marked invalid");
+  return *exit;
 }
 
 //! Spectra of the valid part of the run; an asperity is expected to show its line at its
@@ -104,17 +136,20 @@ SpectralResult analyse_run_spectra(const Study& study, const RunResult& result) 
   SpectralInput input;
   input.times_s = std::span<const double>(result.times_s.data(), result.circuit_samples);
   input.voltage_v = result.measured_voltage_v.empty() ? result.circuit.voltage_v : result.measured_voltage_v;
-  input.currents_a = &result.circuit.current_a;
+  input.currents_a = result.circuit.current_a.empty() ? nullptr : &result.circuit.current_a;
   try {
     const AnalysisRange range = analysis_range(input.times_s, settings);
     for (std::size_t i = 0; i < study.asperities.size(); ++i) {
       const Asperity& a = study.asperities[i];
       const double damping = study.model == ModelKind::model2 ? study.model2.damping_n_s_per_m : 0.0;
       input.expected_frequency_hz.push_back(damped_natural_frequency_hz(a.stiffness_n_per_m, a.mass_kg, damping));
-      const auto& v = result.trajectories[i].v_m_per_s;
-      const std::size_t first = std::min(range.first_sample, v.size());
-      const std::span<const double> interval(v.data() + first, std::min(range.samples, v.size() - first));
-      input.sliding.push_back(slip_fraction(study, interval) >= settings.min_slip_fraction);
+      const std::vector<bool>& sliding = result.statistics[i].sliding;
+      const std::size_t first = std::min(range.first_sample, sliding.size());
+      const std::size_t count = std::min(range.samples, sliding.size() - first);
+      const auto begin = sliding.begin() + static_cast<std::ptrdiff_t>(first);
+      const auto slides = static_cast<double>(std::count(begin, begin + static_cast<std::ptrdiff_t>(count), true));
+      const double fraction = count > 0 ? slides / static_cast<double>(count) : 0.0;
+      input.sliding.push_back(fraction >= settings.min_slip_fraction);
     }
     return analyse_spectra(input, settings);
   } catch (const InputError& e) {
@@ -144,6 +179,7 @@ RunResult run_study(const Study& study, const RunOptions& options) {
   RunResult result;
   const TimeGrid grid = study.grid();
   result.times_s = grid.times();
+  const std::span<const double> times(result.times_s);
   const std::size_t n = study.asperities.size();
   // The prior checks of the population; Model 1's "never slips" is judged on the solved
   // motion below instead, which also sees the initial state.
@@ -153,50 +189,100 @@ RunResult run_study(const Study& study, const RunOptions& options) {
   if (study.model == ModelKind::model2)
     result.notes.insert(result.notes.end(), result.validity.model2_warnings.begin(), result.validity.model2_warnings.end());
 
+  // Each asperity in turn: tribology, its samples, the domain check, its statistics, and
+  // its share of the circuit's sums; then everything the study does not keep is dropped.
+  const Keep keep = what_to_keep(study, options);
+  const SlidingRule rule = SlidingRule::of(study);
+  const double t_end = grid.count > 0 ? grid.at(grid.count - 1) : 0.0;
+  ElementSums sums(times);
+  std::vector<MotionSamples> circuit_samples(keep.circuit_samples ? n : 0);
+  MotionSamples samples, drive_samples;
+  double first_exit = INFINITY;
+  result.trajectories.resize(n);
+  result.statistics.resize(n);
   const auto tribology_start = Clock::now();
   {
     std::optional<Progress> progress;
     if (options.show_progress) progress.emplace("tribology", n);
     for (std::size_t i = 0; i < n; ++i) {
-      result.trajectories.push_back(solve_one(study, study.asperities[i], grid));
-      check_finite(result.trajectories.back(), study.asperities[i], i, grid);
-      for (Event e : result.trajectories.back().events) {
+      const Asperity& a = study.asperities[i];
+      Trajectory& t = result.trajectories[i];
+      if (study.model == ModelKind::model1) {
+        t = solve_model1(a, study.model1, grid);
+        check_finite(t.x_m, t.v_m_per_s, t.friction_n, a, i, grid);
+        t.motion->sample(times, true, samples);
+        result.statistics[i] = statistics_of(rule, t.x_m, t.v_m_per_s, !t.events.empty());
+      } else {
+        Model2Integration integration = integrate_model2(a, study.model2, t_end);
+        t.solver_steps = integration.accepted_steps;
+        t.rejected_steps = integration.rejected_steps;
+        auto motion = std::make_unique<Model2Motion>(std::move(integration));
+        motion->sample(times, true, samples);
+        t.events = motion->relative_velocity_events(study.model2.belt_velocity_m_per_s);
+        t.motion = std::move(motion);
+        if (keep.friction) {
+          const StribeckFriction friction(study.model2, a.normal_load_n);
+          t.friction_n.resize(samples.v_m_per_s.size());
+          for (std::size_t j = 0; j < t.friction_n.size(); ++j)
+            t.friction_n[j] = friction.force(study.model2.belt_velocity_m_per_s - samples.v_m_per_s[j]);
+        }
+        check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
+        result.statistics[i] = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
+        if (keep.x) t.x_m = samples.x_m;
+        if (keep.v) t.v_m_per_s = samples.v_m_per_s;
+      }
+      for (Event e : t.events) {
         e.asperity = i;
         result.events.push_back(e);
       }
+      // What drives the element: the actual x(t), or the imposed x0(t) (Fig. 3c).
+      const Motion* input = t.motion.get();
+      const MotionSamples* input_samples = &samples;
+      std::vector<double> drive_x;
+      if (study.circuit_input == CircuitInput::imposed) {
+        result.drives.push_back(std::make_unique<ImposedDriveMotion>(study.model1, a));
+        input = result.drives.back().get();
+        input->sample(times, true, drive_samples);
+        input_samples = &drive_samples;
+        drive_x = drive_samples.x_m;
+      }
+      const std::span<const double> own_x = study.model == ModelKind::model1
+          ? std::span<const double>(study.circuit_input == CircuitInput::imposed ? drive_x : t.x_m)
+          : std::span<const double>();
+      first_exit = std::min(first_exit, domain_exit(study, i, *input, times, *input_samples, own_x, result));
+      const bool circuit_needs_motion = sums.add(a.element, *input_samples, *input);
+      if (keep.circuit_samples) circuit_samples[i] = *input_samples;
+      if (study.model == ModelKind::model1 && !keep.x) t.x_m = {};
+      if (study.model == ModelKind::model1 && !keep.v) t.v_m_per_s = {};
+      if (study.model == ModelKind::model1 && !keep.friction) t.friction_n = {};
+      // The circuit evaluates a motion itself only inside intervals holding its cuts.
+      if (!keep.motion && !(circuit_needs_motion && input == t.motion.get())) t.motion.reset();
       if (progress) progress->advance();
     }
   }
   result.tribology_seconds = seconds_since(tribology_start);
   note_model1_validity(study, result);
-
-  // What drives the elements: the actual x(t), or the imposed x0(t) (Fig. 3c).
-  std::vector<const Motion*> inputs;
-  std::vector<std::vector<double>> input_samples;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (study.circuit_input == CircuitInput::imposed) {
-      result.drives.push_back(std::make_unique<ImposedDriveMotion>(study.model1, study.asperities[i]));
-      std::vector<double> x0(grid.count);
-      for (std::size_t j = 0; j < grid.count; ++j) x0[j] = result.drives.back()->at(result.times_s[j]).x_m;
-      inputs.push_back(result.drives.back().get());
-      input_samples.push_back(std::move(x0));
-    } else {
-      inputs.push_back(result.trajectories[i].motion.get());
-      input_samples.push_back(result.trajectories[i].x_m);
-    }
-  }
-  result.circuit_samples = valid_prefix(study, inputs, input_samples, result);
+  result.valid = std::isinf(first_exit);
+  result.circuit_samples = result.valid ? result.times_s.size()
+      : static_cast<std::size_t>(std::lower_bound(result.times_s.begin(), result.times_s.end(), first_exit) -
+                                 result.times_s.begin());
   std::stable_sort(result.events.begin(), result.events.end(),
                    [](const Event& a, const Event& b) { return a.time_s < b.time_s; });
 
   const auto circuit_start = Clock::now();
-  std::vector<StengElement> elements;
-  for (const Asperity& a : study.asperities) elements.push_back(a.element);
   {
     std::optional<Progress> progress;
     if (options.show_progress) progress.emplace("circuit", result.circuit_samples);
-    result.circuit = solve_circuit(elements, inputs, std::span<const double>(result.times_s.data(), result.circuit_samples),
-                                   study.circuit, progress ? &*progress : nullptr);
+    SummedCircuit circuit = solve_summed_circuit(sums, result.circuit_samples, study.circuit, progress ? &*progress : nullptr);
+    if (keep.circuit_samples) {
+      result.circuit.current_a.resize(n);
+      result.circuit.element_charge_c.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        element_traces(study.asperities[i].element, circuit_samples[i], circuit, times, i + 1, result.circuit.current_a[i],
+                       result.circuit.element_charge_c[i]);
+    }
+    result.circuit.voltage_v = std::move(circuit.voltage_v);
+    result.circuit.charge_c = std::move(circuit.charge_c);
   }
   result.circuit_seconds = seconds_since(circuit_start);
 

@@ -15,9 +15,22 @@
 
 namespace stengmc {
 
+//! What the summary and the spectra need of one asperity's motion, gathered while it
+//! streams through (so the samples themselves need not be kept).
+struct AsperityStatistics {
+  double slip_fraction = 0.0;         //!< fraction of samples sliding (pipeline/slip_fraction.hpp)
+  double max_x_m = 0.0;               //!< max x over the run [m]
+  double rms_velocity_m_per_s = 0.0;  //!< root mean square of x' [m/s]
+  bool moved = false;                 //!< any x' != 0 or any event
+  std::vector<bool> sliding;          //!< per sample: slides (for the spectra's interval)
+};
+
 struct RunResult {
   std::vector<double> times_s;                       //!< output grid [s]
-  std::vector<Trajectory> trajectories;              //!< one per asperity, same order as the study
+  //! One per asperity, same order as the study: motion, samples (x, v, friction), events
+  //! and step counts. With RunOptions::keep_traces off only the events and step counts.
+  std::vector<Trajectory> trajectories;
+  std::vector<AsperityStatistics> statistics;        //!< one per asperity
   std::vector<std::unique_ptr<Motion>> drives;       //!< imposed x0(t) per asperity (Model 1), else empty
   std::vector<Event> events;                         //!< every asperity's events, by time
   CircuitResult circuit;                             //!< on the valid prefix of the grid
@@ -36,6 +49,11 @@ struct RunResult {
 struct RunOptions {
   bool show_progress = true;  //!< progress bars on stderr (an ensemble runs many at once: off)
   WorkLimits limits;          //!< the run is refused (InputError) when its estimate exceeds these
+  //! Keep every asperity's motion and the traces the study's [output] asks for (and the
+  //! element currents its [spectrum] analyses). Off (an ensemble realisation), each motion
+  //! is summed into the circuit and dropped: memory per asperity is a few bytes per sample
+  //! instead of ~100, and no element-current spectra are computed (nothing records them).
+  bool keep_traces = true;
 };
 
 //! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`,

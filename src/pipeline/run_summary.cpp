@@ -24,14 +24,13 @@ RunSummary summarise(const Study& study, const RunResult& result) {
   RunSummary summary;
   for (std::size_t i = 0; i < study.asperities.size(); ++i) {
     const Asperity& a = study.asperities[i];
-    const Trajectory& t = result.trajectories[i];
+    const AsperityStatistics& t = result.statistics[i];
     AsperitySummary s;
     const double damping = study.model == ModelKind::model2 ? study.model2.damping_n_s_per_m : 0.0;
     s.natural_frequency_hz = damped_natural_frequency_hz(a.stiffness_n_per_m, a.mass_kg, damping);
-    s.slip_fraction = slip_fraction(study, t.v_m_per_s);
-    const double max_x = t.x_m.empty() ? 0.0 : *std::max_element(t.x_m.begin(), t.x_m.end());
-    s.max_x_over_l = max_x / a.element.length_m;
-    s.rms_velocity_m_per_s = rms(t.v_m_per_s, t.v_m_per_s.size());
+    s.slip_fraction = t.slip_fraction;
+    s.max_x_over_l = t.max_x_m / a.element.length_m;
+    s.rms_velocity_m_per_s = t.rms_velocity_m_per_s;
     summary.asperities.push_back(s);
   }
   const auto& v = result.circuit.voltage_v;

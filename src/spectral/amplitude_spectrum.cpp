@@ -12,26 +12,16 @@
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "spectral/dtft.hpp"
 #include "spectral/fftw_planner.hpp"
 
 namespace stengmc {
 
 namespace {
 
-// Samples between exact re-evaluations of e^{-i theta n} in amplitude_at(): within a block
-// the phasors are advanced by complex multiplication (a few eps of drift per step), at each
-// block start recomputed from the exactly reduced phase, so the error stays ~16 steps x eps
-// (~1e-13 relative, measured; a block of 256 runs 40 % faster but drifts to ~7e-13).
-constexpr std::size_t PHASOR_BLOCK = 64;
-constexpr std::size_t PHASOR_LANES = 4;  // PHASOR_BLOCK must be a multiple
-
-// Fractional part of n x in [-1/2, 1/2], with the rounding error of the product recovered
-// by an FMA, so the phase 2 pi n x is accurate to ~eps even when n x is thousands of cycles.
-double cycles_mod_one(double n, double x) {
-  const double product = n * x;
-  const double error = std::fma(n, x, -product);
-  return (product - std::nearbyint(product)) + error;  // the difference is exact (Sterbenz)
-}
+// Analyzers a thread keeps for reuse; a study analyses one length and window per run, so
+// a few suffice (the oldest goes when a new one would exceed this).
+constexpr std::size_t ANALYZERS_PER_THREAD = 4;
 
 // Dirichlet kernel D(y) = sum_{n<M} e^{-2 pi i y n / M} = e^{-i pi y (M-1)/M} sin(pi y) / sin(pi y / M),
 // y in bins; at y = kM (0/0) the ratio's limit M cos(pi y) / cos(pi y / M) (l'Hopital).
@@ -97,6 +87,27 @@ SpectrumAnalyzer::SpectrumAnalyzer(std::size_t samples, WindowKind window, std::
 
 SpectrumAnalyzer::~SpectrumAnalyzer() = default;
 
+SpectrumAnalyzer& thread_spectrum_analyzer(std::size_t samples, WindowKind window, std::size_t zero_pad_factor) {
+  thread_local std::vector<std::unique_ptr<SpectrumAnalyzer>> kept;
+  thread_local std::vector<std::pair<WindowKind, std::size_t>> keys;  // window and padding of kept[i]
+  // Most recently used last: the oldest unused one goes first, never one just handed out
+  // (a caller holding one analyzer while asking for a second keeps the first).
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (kept[i]->samples() != samples || keys[i] != std::pair{window, zero_pad_factor}) continue;
+    std::rotate(kept.begin() + static_cast<std::ptrdiff_t>(i), kept.begin() + static_cast<std::ptrdiff_t>(i) + 1, kept.end());
+    std::rotate(keys.begin() + static_cast<std::ptrdiff_t>(i), keys.begin() + static_cast<std::ptrdiff_t>(i) + 1, keys.end());
+    return *kept.back();
+  }
+  auto made = std::make_unique<SpectrumAnalyzer>(samples, window, zero_pad_factor);
+  if (kept.size() == ANALYZERS_PER_THREAD) {
+    kept.erase(kept.begin());
+    keys.erase(keys.begin());
+  }
+  kept.push_back(std::move(made));
+  keys.emplace_back(window, zero_pad_factor);
+  return *kept.back();
+}
+
 AmplitudeSpectrum SpectrumAnalyzer::analyse(std::span<const double> signal, double sample_rate_hz) {
   if (signal.size() != samples_) {
     throw InputError("spectrum: analyser made for " + std::to_string(samples_) + " samples was given " +
@@ -134,52 +145,10 @@ double SpectrumAnalyzer::amplitude_at(std::span<const double> signal, double sam
   check_sample_rate(sample_rate_hz);
   if (!std::isfinite(frequency_hz)) throw InputError("spectrum: amplitude_at frequency must be finite");
 
-  // Direct O(M) windowed DTFT. The phasor e^{-2 pi i x n} (x = f dt, cycles per sample) is
-  // recomputed exactly at each block start and advanced by complex rotations in between: as
-  // accurate as std::polar per sample (~1e-15 relative) at a fraction of the cost, which
-  // matters because peak refinement evaluates this ~25 times per peak. PHASOR_LANES
-  // interleaved phasors (samples n, n+1, ... each stepped by PHASOR_LANES samples) break the
-  // multiply dependency chain so the loop runs at throughput, not latency.
-  constexpr std::size_t LANES = PHASOR_LANES;
-  const double x = frequency_hz / sample_rate_hz;
-  const double step_phase = -2.0 * PI * cycles_mod_one(static_cast<double>(LANES), x);
-  const double step_re = std::cos(step_phase);
-  const double step_im = std::sin(step_phase);
-  double sum_re = 0.0;
-  double sum_im = 0.0;
-  for (std::size_t start = 0; start < samples_; start += PHASOR_BLOCK) {
-    std::array<double, LANES> z_re{};
-    std::array<double, LANES> z_im{};
-    std::array<double, LANES> acc_re{};  // per-block, per-lane partial sums: a cheap pairwise summation
-    std::array<double, LANES> acc_im{};
-    for (std::size_t l = 0; l < LANES; ++l) {
-      const double phase = -2.0 * PI * cycles_mod_one(static_cast<double>(start + l), x);
-      z_re[l] = std::cos(phase);
-      z_im[l] = std::sin(phase);
-    }
-    const std::size_t end = std::min(samples_, start + PHASOR_BLOCK);
-    std::size_t n = start;
-    for (; n + LANES <= end; n += LANES) {
-      for (std::size_t l = 0; l < LANES; ++l) {
-        const double v = window_[n + l] * signal[n + l];
-        acc_re[l] += v * z_re[l];
-        acc_im[l] += v * z_im[l];
-        const double next_re = z_re[l] * step_re - z_im[l] * step_im;
-        z_im[l] = z_re[l] * step_im + z_im[l] * step_re;
-        z_re[l] = next_re;
-      }
-    }
-    for (std::size_t l = 0; n < end; ++n, ++l) {  // lane l's phasor now belongs to sample n
-      const double v = window_[n] * signal[n];
-      acc_re[l] += v * z_re[l];
-      acc_im[l] += v * z_im[l];
-    }
-    for (std::size_t l = 0; l < LANES; ++l) {
-      sum_re += acc_re[l];
-      sum_im += acc_im[l];
-    }
-  }
-  return 2.0 * std::hypot(sum_re, sum_im) / window_sum_;
+  // Direct O(M) windowed DTFT (dtft.hpp): peak refinement evaluates it many times per peak.
+  std::vector<double> windowed(samples_);
+  for (std::size_t n = 0; n < samples_; ++n) windowed[n] = window_[n] * signal[n];
+  return 2.0 * std::abs(windowed_dtft(windowed, frequency_hz / sample_rate_hz, false).value) / window_sum_;
 }
 
 double SpectrumAnalyzer::window_response(double offset_hz, double sample_rate_hz) const {

@@ -55,4 +55,10 @@ class SpectrumAnalyzer {
   std::unique_ptr<Plan> plan_;
 };
 
+//! This thread's analyzer for signals of `samples` values with `window` and padding,
+//! made on first use and kept (a few per thread) for every later call: planning costs
+//! more than the FFT, and an ensemble analyses the same length in every realisation.
+//! FFTW_ESTIMATE plans are deterministic, so which thread made one never shows in a result.
+SpectrumAnalyzer& thread_spectrum_analyzer(std::size_t samples, WindowKind window, std::size_t zero_pad_factor = 1);
+
 }  // namespace stengmc

@@ -22,6 +22,11 @@ struct PeakOptions {
   //! put at its frequency (window response incl. negative-frequency images); 0 disables.
   //! Without it a noise-free or zero-padded spectrum reports side lobes as lines.
   double leakage_margin = 2.0;
+  //! > 0: candidates whose bin lies more than this many dB (plus a 12 dB allowance for the
+  //! refinement's gain over the bin) below the strongest candidate's are not refined or
+  //! returned: a later cut at this dynamic range would drop them anyway, and a noise-free
+  //! spectrum has hundreds. 0 (default): all are returned.
+  double skip_below_db = 0.0;
 };
 
 struct Peak {

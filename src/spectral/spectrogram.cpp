@@ -22,7 +22,7 @@ Spectrogram compute_spectrogram(std::span<const double> signal, double sample_ra
   }
 
   // One analyzer (one FFTW plan, one window) for every segment: tfrstft's sliding window.
-  SpectrumAnalyzer analyzer(length, options.window, 1);
+  SpectrumAnalyzer& analyzer = thread_spectrum_analyzer(length, options.window, 1);
 
   // A segment's spectrum is the window-weighted average of its samples' content, so it is
   // dated at the window's centroid: sample L/2 for the periodic Hann and Blackman-Harris

@@ -86,8 +86,14 @@ std::optional<double> exit_through_peak(const Motion& motion, double a, double b
 
 }  // namespace
 
-std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
-                                        std::span<const double> x_m, double length_m) {
+namespace {
+
+//! The scan of first_domain_exit, with the one-sided velocities at each interval's ends
+//! from `start_velocity(j)` (right limit at t_j) and `end_velocity(j)` (left limit at
+//! t_j+1).
+template <class Start, class End>
+std::optional<double> scan(const Motion& motion, std::span<const double> times_s, std::span<const double> x_m,
+                           double length_m, const Start& start_velocity, const End& end_velocity) {
   if (times_s.size() != x_m.size())
     throw Error("first_domain_exit: " + std::to_string(times_s.size()) + " times but " + std::to_string(x_m.size()) +
                 " displacements");
@@ -95,6 +101,8 @@ std::optional<double> first_domain_exit(const Motion& motion, std::span<const do
   for (std::size_t j = 0; j < x_m.size(); ++j) require_finite_displacement(x_m[j], times_s[j]);
   if (x_m.empty()) return std::nullopt;
   if (x_m[0] >= length_m) return times_s[0];
+  // A motion that bounds itself below l has no exit to look for.
+  if (motion.displacement_bound() < length_m) return std::nullopt;
 
   for (std::size_t j = 0; j + 1 < x_m.size(); ++j) {
     const double a = times_s[j];
@@ -102,14 +110,34 @@ std::optional<double> first_domain_exit(const Motion& motion, std::span<const do
     if (x_m[j + 1] >= length_m) return bisect_crossing(motion, a, b, length_m);
     // One-sided limits: a piecewise-linear motion's slope jumps at the samples, and its
     // maxima sit at samples (checked above); within an interval its slope has one sign.
-    const PhasePoint start = checked_at(motion, a, Side::right);
-    const PhasePoint end = checked_at(motion, b, Side::left);
+    const PhasePoint start{x_m[j], start_velocity(j)};
+    const PhasePoint end{x_m[j + 1], end_velocity(j)};
     const bool rises_then_falls = start.v_m_per_s >= 0.0 && end.v_m_per_s <= 0.0 &&
                                   !(start.v_m_per_s == 0.0 && end.v_m_per_s == 0.0);
     if (!rises_then_falls) continue;
     if (const auto exit = exit_through_peak(motion, a, b, start, end, length_m)) return exit;
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
+                                        std::span<const double> x_m, double length_m) {
+  return scan(
+      motion, times_s, x_m, length_m, [&](std::size_t j) { return checked_at(motion, times_s[j], Side::right).v_m_per_s; },
+      [&](std::size_t j) { return checked_at(motion, times_s[j + 1], Side::left).v_m_per_s; });
+}
+
+std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
+                                        const MotionSamples& samples, double length_m) {
+  auto finite = [&](double v, std::size_t j) {
+    if (!std::isfinite(v)) throw ModelError("velocity is not finite at t = " + seconds_text(times_s[j]) + " s");
+    return v;
+  };
+  return scan(
+      motion, times_s, samples.x_m, length_m, [&](std::size_t j) { return finite(samples.v_m_per_s[j], j); },
+      [&](std::size_t j) { return finite(samples.v_left(j + 1), j + 1); });
 }
 
 }  // namespace stengmc

@@ -19,8 +19,9 @@ namespace stengmc {
 //!   that are all < l, a Model 2 oscillation sampled near its Nyquist rate) is found.
 //!   Stick phases (x' exactly 0 over a stretch) at either end are walked through.
 //!
-//! Cost: two motion evaluations per sample interval, plus a short bisection at each
-//! interior maximum. The peak bisection stops early once the bracket is <= 1/64 of the
+//! A motion whose displacement_bound() is below l has nothing to find (after the samples'
+//! NaN check). Otherwise the cost is two motion evaluations per sample interval, plus a
+//! short bisection at each interior maximum. The peak bisection stops early once the bracket is <= 1/64 of the
 //! interval, x' is nonzero at both its ends and max(x) + width · max|x'| at its ends is
 //! below l, i.e. it assumes |x'| does not grow towards the peak on at least one side
 //! within such a bracket (true near any maximum the sampling resolves). Otherwise the
@@ -41,5 +42,11 @@ namespace stengmc {
 //!         All samples are checked, also those after an exit.
 std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
                                         std::span<const double> x_m, double length_m);
+
+//! The same with the motion's samples at `times_s` (Motion::sample): the velocities at
+//! the samples are read from them instead of evaluated, so only the bisections evaluate
+//! the motion. Identical results when the samples are the motion's own.
+std::optional<double> first_domain_exit(const Motion& motion, std::span<const double> times_s,
+                                        const MotionSamples& samples, double length_m);
 
 }  // namespace stengmc

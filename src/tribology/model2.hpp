@@ -21,13 +21,18 @@ struct Model2Params {
   double stribeck_decay_s_per_m = 1e-7;      //!< c_s, Stribeck decay constant [s/m]
   double atan_sharpness_s_per_m = 1e3;       //!< s, sharpness of the atan regularisation [s/m]
   FrictionForm friction_form = FrictionForm::consistent;
-  //! Local error tolerance of the RODAS4 integrator, relative and (in units of the length
-  //! scale max(mu N / k, |x0|, |x0'| / w0, v_b / w0)) absolute [-].
+  //! Local error tolerance of the integrator (RODAS4 steps and sliding-propagator steps,
+  //! model2_integrator.hpp), relative and (in units of the length scale
+  //! max(mu N / k, |x0|, |x0'| / w0, v_b / w0)) absolute [-].
   //! The default 1e-8 guarantees, for the 8 Table-1 cases (k = 25..155 N/m, v_b = 1, 10 m/s,
   //! 50 us, both friction forms), a displacement on the output grid and on the dense output
-  //! within 1e-6 of max|x| of a 100x tighter solution (measured worst case 3.1e-7, k = 155,
-  //! v_b = 10; velocity within ~4e-6 of max|x'|). The global error scales ~linearly with it.
+  //! within 1e-6 of max|x| of a 100x tighter solution (measured worst case 3.8e-8, k = 155,
+  //! v_b = 10; 3.1e-7 with RODAS4 alone). The global error scales ~linearly with it.
   double relative_tolerance = 1e-8;
+  //! Take exact steps of the linearised motion where friction is nearly linear (sliding);
+  //! false: RODAS4 alone, the method before issue 12. Not a study key: benchmarks and
+  //! tests compare the two.
+  bool sliding_propagator = true;
 };
 
 //! Friction force F(v_r) on the asperity [N] for relative velocity v_r = v_b - x' [m/s].
@@ -35,9 +40,11 @@ double model2_friction(const Model2Params& params, double normal_load_n, double 
 
 //! Solves m x'' + c x' + k x = F(v_b - x') for one asperity with an error-controlled,
 //! L-stable integrator; dense output between steps for the circuit.
-//! Method: RODAS4 (Hairer & Wanner) on the nondimensional system, see model2_integrator.hpp.
-//! The samples and the overtake/regrip events are taken from the quintic Hermite dense
-//! output (tribology/hermite_motion.hpp); Event::asperity is left 0 for the caller to set.
+//! Method: RODAS4 (Hairer & Wanner) on the nondimensional system, and where friction is
+//! nearly linear exact steps of the linearised oscillator with a polynomial correction
+//! (sliding_propagator.hpp), see model2_integrator.hpp. The samples and the
+//! overtake/regrip events are taken from the dense output (tribology/model2_motion.hpp);
+//! Event::asperity is left 0 for the caller to set.
 //! @throws ModelError if the integrator fails (step size underflow, non-finite state); the
 //!         message names k, v_b and the time. @throws InputError for k <= 0 or m <= 0.
 Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, const TimeGrid& grid);

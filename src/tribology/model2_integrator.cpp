@@ -10,12 +10,12 @@
 #include <Eigen/LU>  // fixed-size 2x2 inverse
 
 #include "core/error.hpp"
+#include "tribology/model2_scaled_system.hpp"
+#include "tribology/sliding_propagator.hpp"
 
 namespace stengmc {
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-using Mat2 = Eigen::Matrix2d;
 
 // RODAS4: the 6-stage, order 4(3), L-stable and stiffly accurate Rosenbrock method of
 // E. Hairer and G. Wanner, "Solving Ordinary Differential Equations II", 2nd ed., Springer
@@ -49,42 +49,38 @@ constexpr double MAX_GROWTH = 6.0;
 // dense output (error ~ (w0 h)^6 / 46080 of the amplitude) below 1e-10 even where the
 // local error test alone would allow longer steps.
 constexpr double MAX_STEP = 0.25;
+// Where the motion is not oscillating at all (the linearised system over-damped,
+// zeta_e > 1: sticking, x' ~ v_b), x follows the slow manifold and the quintic is far more
+// accurate than that bound; there the steps may reach MAX_STEP_STICKING, but stop at half
+// the way to where breakaway could at the earliest begin: friction cannot hold more than
+// N max(mu_s, mu_k), so sticking ends before k x + c x' reaches it.
+constexpr double MAX_STEP_STICKING = 2.0;
+
+//! Largest step from y for the quintic dense output (scaled units).
+double max_step(const ScaledSystem& sys, const Vec2& y, const Mat2& jac) {
+  if (!(-0.5 * jac(1, 1) > 1.0) || y[1] == 0.0) return MAX_STEP;
+  const double direction = y[1] > 0.0 ? 1.0 : -1.0;
+  const double gap = direction * sys.friction_term_bound() - sys.two_zeta() * y[1] - y[0];
+  const double time_to_breakaway = gap / y[1];
+  if (!(time_to_breakaway > 0.0)) return MAX_STEP;
+  return std::clamp(0.5 * time_to_breakaway, MAX_STEP, MAX_STEP_STICKING);
+}
 constexpr std::size_t MAX_STEPS = 50'000'000;
 
-// Model 2 in scaled variables tau = w0 t, u = x / L, w = x' / (w0 L), with w0 = sqrt(k/m):
-//   u' = w,  w' = -u - 2 zeta w + F(v_b - w0 L w) / (k L).
-// With L ~ mu_s N / k both components are O(1) in every Table-1 case (x up to ~1.2 L,
-// velocity swings ~ L w0), so one relative + absolute tolerance fits both.
-class ScaledSystem {
- public:
-  ScaledSystem(const Asperity& asperity, const Model2Params& params, double length_scale_m)
-      : friction_(params, asperity.normal_load_n),
-        belt_velocity_(params.belt_velocity_m_per_s),
-        velocity_scale_(std::sqrt(asperity.stiffness_n_per_m / asperity.mass_kg) * length_scale_m),
-        force_scale_(1.0 / (asperity.stiffness_n_per_m * length_scale_m)),
-        two_zeta_(params.damping_n_s_per_m / std::sqrt(asperity.stiffness_n_per_m * asperity.mass_kg)) {}
+// Where the sliding propagator (sliding_propagator.hpp) is tried: while the frozen
+// oscillator is at most moderately damped. Sticking (zeta_e ~ 1e4: friction slope
+// N mu_s (2/pi) s, far from linear near breakaway) stays with RODAS4, and so does a step
+// the propagator cannot take at least PROPAGATOR_MIN_STEP long.
+constexpr double PROPAGATOR_ZETA_MAX = 0.5;
+// Longest step: half the undamped period (the remainder is then fitted over at most one
+// of its swings; the error control decides below that).
+constexpr double PROPAGATOR_MAX_STEP = 3.141592653589793;
+constexpr double PROPAGATOR_MIN_STEP = 0.1;
+constexpr double PROPAGATOR_MAX_GROWTH = 4.0;
+// After the propagator gave way, RODAS4 steps before it is tried again; doubles with each
+// consecutive failure (up to 2^6 times), back to this after a success.
+constexpr std::size_t PROPAGATOR_COOLDOWN = 2;
 
-  [[nodiscard]] Vec2 rhs(const Vec2& y) const {
-    const double force = friction_.force(belt_velocity_ - velocity_scale_ * y[1]);
-    return {y[1], -y[0] - two_zeta_ * y[1] + force_scale_ * force};
-  }
-
-  //! Right-hand side and its Jacobian at y.
-  void rhs_and_jacobian(const Vec2& y, Vec2& f, Mat2& jac) const {
-    double force = 0.0;
-    double slope = 0.0;
-    friction_.force_and_slope(belt_velocity_ - velocity_scale_ * y[1], force, slope);
-    f = {y[1], -y[0] - two_zeta_ * y[1] + force_scale_ * force};
-    jac << 0.0, 1.0, -1.0, -two_zeta_ - force_scale_ * slope * velocity_scale_;
-  }
-
- private:
-  StribeckFriction friction_;
-  double belt_velocity_;
-  double velocity_scale_;
-  double force_scale_;
-  double two_zeta_;
-};
 
 // One RODAS4 step of size h from y (with f0 = f(y), jac = J(y)); returns y1 and the error
 // estimate. The 2x2 iteration matrix is inverted in closed form: its determinant is
@@ -111,17 +107,6 @@ void rodas4_step(const ScaledSystem& sys, const Vec2& y, const Vec2& f0, const M
   y1 = y6 + err;
 }
 
-// Hairer's weighted RMS norm: sk = atol + rtol max(|y0|, |y1|).
-double error_norm(const Vec2& err, const Vec2& y0, const Vec2& y1, double tol) {
-  double sum = 0.0;
-  for (int i = 0; i < 2; ++i) {
-    const double sk = tol + tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-    const double r = err[i] / sk;
-    sum += r * r;
-  }
-  return std::sqrt(0.5 * sum);
-}
-
 [[noreturn]] void fail(const Asperity& asperity, const Model2Params& params, double t_s, const std::string& why) {
   std::ostringstream msg;
   msg.precision(6);
@@ -132,7 +117,7 @@ double error_norm(const Vec2& err, const Vec2& y0, const Vec2& y1, double tol) {
 
 }  // namespace
 
-Model2Integration integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s) {
+void integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s, Model2Integration& out) {
   const double k = asperity.stiffness_n_per_m;
   const double m = asperity.mass_kg;
   if (!(k > 0.0) || !(m > 0.0) || !std::isfinite(k) || !std::isfinite(m)) {
@@ -166,7 +151,12 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
   const double accel_scale = w0 * velocity_scale;
 
   const ScaledSystem sys(asperity, params, length_m);
-  Model2Integration out;
+  out.knots.clear();
+  out.pieces.clear();
+  out.accepted_steps = 0;
+  out.oscillator_steps = 0;
+  out.rejected_steps = 0;
+  out.natural_frequency_rad_per_s = w0;
   auto push_knot = [&](double tau, const Vec2& y, const Vec2& f) {
     out.knots.push_back({tau / w0, y[0] * length_m, y[1] * velocity_scale, f[1] * accel_scale});
   };
@@ -189,13 +179,52 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
   double err_prev_accepted = 0.0;
   bool first_step = true;
   bool last_rejected = false;
+  double h_propagator = PROPAGATOR_MAX_STEP;
+  std::size_t cooldown = 0;
+  unsigned failures = 0;
   Vec2 y1;
   Vec2 err;
+
+  auto accept = [&](double tau_new, const Vec2& y_new, const MotionPiece& piece) {
+    tau = tau_new;
+    y = y_new;
+    sys.rhs_and_jacobian(y, f, jac);
+    push_knot(tau, y, f);
+    out.pieces.push_back(piece);
+    ++out.accepted_steps;
+  };
 
   while (tau < tau_end) {
     if (out.accepted_steps + out.rejected_steps >= MAX_STEPS) {
       fail(asperity, params, tau / w0, "step budget of " + std::to_string(MAX_STEPS) + " exhausted");
     }
+    const double zeta_e = -0.5 * jac(1, 1);
+    if (params.sliding_propagator && cooldown == 0 && zeta_e <= PROPAGATOR_ZETA_MAX && std::isfinite(zeta_e)) {
+      double hp = h_propagator;
+      const bool reaches_end = tau + 1.01 * hp >= tau_end;
+      if (reaches_end) hp = tau_end - tau;
+      const PropagatorStep step = propagator_step(sys, y, f, jac, hp, tol);
+      const double e = step.error;
+      // The bound scales as h^(NODES + 3) (interpolation of the remainder, times h).
+      const double fac = e > 0.0 ? 0.9 * std::pow(e, -1.0 / (PROPAGATOR_NODES + 3)) : PROPAGATOR_MAX_GROWTH;
+      if (e <= 1.0 && step.suitable) {
+        MotionPiece piece{PieceKind::oscillator, step.zeta, step.centre * length_m, {}};
+        for (std::size_t j = 0; j < piece.particular_m.size(); ++j) piece.particular_m[j] = step.particular[j] * length_m;
+        accept(reaches_end ? tau_end : tau + hp, step.y_end, piece);
+        ++out.oscillator_steps;
+        failures = 0;
+        h_propagator = std::min(hp * std::clamp(fac, 1.0, PROPAGATOR_MAX_GROWTH), PROPAGATOR_MAX_STEP);
+        continue;
+      }
+      ++out.rejected_steps;
+      h_propagator = hp * std::clamp(fac, 0.2, 0.9);
+      if (step.suitable && h_propagator >= PROPAGATOR_MIN_STEP) continue;
+      // Friction too far from linear here: RODAS4 takes over for a while.
+      cooldown = PROPAGATOR_COOLDOWN << std::min(failures, 6u);
+      if (step.suitable) ++failures;
+      h_propagator = PROPAGATOR_MIN_STEP;
+    }
+
     // Take the last step exactly to tau_end; stretch a step by up to 1 % rather than
     // leave a sliver behind.
     bool reaches_end = false;
@@ -226,16 +255,15 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
       h_prev_accepted = h;
       err_prev_accepted = std::max(1e-2, e);
 
-      tau = reaches_end ? tau_end : tau + h;
-      y = y1;
-      sys.rhs_and_jacobian(y, f, jac);
-      push_knot(tau, y, f);
-      ++out.accepted_steps;
+      accept(reaches_end ? tau_end : tau + h, y1, {zeta_e > 1.0 ? PieceKind::cubic : PieceKind::quintic});
+      if (cooldown > 0) --cooldown;
 
-      double h_new = std::min(h / fac, MAX_STEP);
+      double h_new = std::min(h / fac, max_step(sys, y, jac));
       if (last_rejected) h_new = std::min(h_new, h);
       last_rejected = false;
       h = h_new;
+      // The propagator resumes from what RODAS4 found affordable, not less than its minimum.
+      if (cooldown == 0) h_propagator = std::max(PROPAGATOR_MIN_STEP, std::min(4.0 * h, PROPAGATOR_MAX_STEP));
     } else {
       ++out.rejected_steps;
       // A rejected first step usually means a far too optimistic guess: cut hard.
@@ -243,6 +271,11 @@ Model2Integration integrate_model2(const Asperity& asperity, const Model2Params&
       last_rejected = true;
     }
   }
+}
+
+Model2Integration integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s) {
+  Model2Integration out;
+  integrate_model2(asperity, params, t_end_s, out);
   return out;
 }
 

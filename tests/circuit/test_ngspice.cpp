@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
+#include "circuit/element_sums.hpp"
 #include "circuit/ngspice_runner.hpp"
 #include "core/constants.hpp"
 #include "tribology/sampled_motion.hpp"
@@ -75,6 +76,9 @@ TEST(Ngspice, FourTable2ElementsOnOneMegaohmAgreeWithTheAppendixSubcircuit) {
   CircuitParams params;
   params.load_resistance_ohm = LOAD_OHM;
   const CircuitResult ours = solve_circuit(elements, motion_pointers, times, params);
+  // The streamed solver (what `stengmc circuit` and the pipeline use) on the same input,
+  // held to the same bars below.
+  const CircuitResult streamed = solve_circuit_streamed(elements, motion_pointers, times, params);
 
   // --- ngspice. Scales for its absolute tolerances (NGSPICE-NOTES: abstol and chgtol
   // ~1e-3 reltol times the problem's current and charge scales, or a defaults-only run of
@@ -193,6 +197,11 @@ TEST(Ngspice, FourTable2ElementsOnOneMegaohmAgreeWithTheAppendixSubcircuit) {
   // as C_L on our side alone moves Q by 1.4e-5 (V by nothing), so the 1e-5
   // catches capacitance errors of ~10 % and above.
   EXPECT_LE(error_q, 1e-5);
+  const double streamed_v = relative_l2(v_spice, streamed.voltage_v);
+  const double streamed_q = relative_l2(q_spice, streamed.charge_c);
+  std::printf("streamed solver: relative L2 error vs ngspice: V %.3e, Q %.3e\n", streamed_v, streamed_q);
+  EXPECT_LE(streamed_v, 2e-3);
+  EXPECT_LE(streamed_q, 1e-5);
 
   // Element currents i_i = dQ_i/dt: minus the current through the 0 V sense source
   // (NGSPICE-NOTES), on the grid as left limits. The first two samples are left out:
@@ -212,6 +221,7 @@ TEST(Ngspice, FourTable2ElementsOnOneMegaohmAgreeWithTheAppendixSubcircuit) {
     // x'/d0) V term, ~4e-5 of the current: dropping it measures 3.5e-5 to 4e-5. 1e-5 sits
     // between, a factor 7 above what we reach.
     EXPECT_LE(error_i, 1e-5) << "element " << i;
+    EXPECT_LE(relative_l2(i_spice, streamed.current_a[i], 2), 1e-5) << "streamed, element " << i;
   }
 
   if (!HasFailure()) std::filesystem::remove_all(directory);

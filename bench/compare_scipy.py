@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""One asperity-run against the peer: scipy's Radau (rtol 1e-6) and stengmc's Model 2
+solver on the same problem (k = 25 N/m, Table 1/2 values, from rest, 50 us, x on the
+5001-point grid at 100 MHz), v_b = 1 and 10 m/s. Prints both times, both accuracies
+against a tight independent reference (scipy Radau at rtol = atol = 1e-12; its own error
+is shown by comparing with 1e-11), and the ratio.
+
+Fairness: scipy integrates the same nondimensional system stengmc does (u = x / L,
+w = x' / (w0 L)), so rtol = atol in both mean the same thing, and returns x and x' on
+the grid (t_eval), as stengmc samples its dense output. scipy is timed with its default
+finite-difference Jacobian and, separately, with the analytic one (its fastest). Times
+are CPU times (time.process_time; stengmc: thread CPU time), medians of repeated runs.
+
+    /usr/bin/python3 bench/compare_scipy.py BUILD_DIR
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+K, M, N = 25.0, 1e-12, 1e-3          # N/m, kg, N (Table 1)
+MU_S, MU_K, C, CS, S = 0.28, 0.22, 1e-7, 1e-7, 1e3
+DURATION, RATE = 50e-6, 100e6
+SAMPLES = int(round(DURATION * RATE)) + 1
+
+
+def system(vb):
+    """Model 2 (MODEL.md §1, consistent friction) in stengmc's scaled variables."""
+    w0 = np.sqrt(K / M)
+    length = max(MU_S * N / K, vb / w0)
+    speed = w0 * length
+
+    def friction(vr):
+        return N * (MU_K + (MU_S - MU_K) * np.exp(-CS * abs(vr))) * (2 / np.pi) * np.arctan(S * vr)
+
+    def rhs(_t, y):
+        v = y[1] * speed
+        return [y[1], (friction(vb - v) - C * v - K * y[0] * length) / (M * w0 * speed)]
+
+    def jacobian(_t, y):
+        vr = vb - y[1] * speed
+        decay = np.exp(-CS * abs(vr))
+        sign = (2 / np.pi) * np.arctan(S * vr)
+        slope = N * (-CS * np.sign(vr) * (MU_S - MU_K) * decay * sign
+                     + (MU_K + (MU_S - MU_K) * decay) * (2 / np.pi) * S / (1 + (S * vr) ** 2))
+        return [[0.0, 1.0], [-K * length / (M * w0 * speed), (-slope * speed - C * speed) / (M * w0 * speed)]]
+
+    tau = np.linspace(0.0, DURATION * w0, SAMPLES)
+    return rhs, jacobian, tau, length
+
+
+def scipy_run(vb, tol, analytic_jacobian):
+    rhs, jacobian, tau, length = system(vb)
+    kwargs = {"jac": jacobian} if analytic_jacobian else {}
+    start = time.process_time()
+    result = solve_ivp(rhs, (tau[0], tau[-1]), [0.0, 0.0], method="Radau", rtol=tol, atol=tol, t_eval=tau, **kwargs)
+    seconds = time.process_time() - start
+    if result.status != 0:
+        raise RuntimeError(f"scipy Radau failed at v_b = {vb}: {result.message}")
+    return seconds, result.y[0] * length
+
+
+def median_of(runs):
+    return sorted(runs)[len(runs) // 2]
+
+
+def ours(build, vb, tol, repetitions, path):
+    out = subprocess.run([os.path.join(build, "bench", "bench_asperity_run"), str(vb), str(K), str(tol),
+                          str(repetitions), path], check=True, capture_output=True, text=True).stdout.split()
+    return float(out[0]), int(out[1]), np.fromfile(path, dtype=np.float64)
+
+
+def error(x, reference):
+    return float(np.max(np.abs(x - reference)) / np.max(np.abs(reference)))
+
+
+def main():
+    build = sys.argv[1] if len(sys.argv) > 1 else "build"
+    quick = os.environ.get("STENGMC_BENCH_QUICK", "0") not in ("", "0")
+    repeats = 1 if quick else 3
+    print("One asperity-run (k = 25 N/m, 50 us from rest, 5001 samples): stengmc vs scipy Radau, CPU times\n")
+    print("| v_b | scipy Radau rtol 1e-6 (FD Jacobian) | scipy, analytic Jacobian | stengmc (rtol 1e-8, default) "
+          "| ratio (FD / analytic) | stengmc at rtol 1e-6 | ratio at equal rtol |")
+    print("|---|---|---|---|---|---|---|")
+    ratios = []
+    with tempfile.TemporaryDirectory() as scratch:
+        path = os.path.join(scratch, "x.bin")
+        for vb in (1.0, 10.0):
+            _, reference = scipy_run(vb, 1e-12, True)
+            _, looser = scipy_run(vb, 1e-11, True)
+            runs_fd = [scipy_run(vb, 1e-6, False) for _ in range(repeats)]
+            runs_an = [scipy_run(vb, 1e-6, True) for _ in range(repeats)]
+            t_fd, x_fd = median_of([r[0] for r in runs_fd]), runs_fd[0][1]
+            t_an, x_an = median_of([r[0] for r in runs_an]), runs_an[0][1]
+            t_ours, steps, x_ours = ours(build, vb, 1e-8, 51, path)
+            t_ours6, steps6, x_ours6 = ours(build, vb, 1e-6, 51, path)
+            ratio_fd, ratio_an = t_fd / t_ours, t_an / t_ours
+            ratios.append((ratio_fd, ratio_an, error(x_ours, reference) <= error(x_fd, reference)))
+            print(f"| {vb:g} m/s | {1e3 * t_fd:.1f} ms, error {error(x_fd, reference):.1e} "
+                  f"| {1e3 * t_an:.1f} ms, error {error(x_an, reference):.1e} "
+                  f"| {1e6 * t_ours:.0f} us ({steps} steps), error {error(x_ours, reference):.1e} "
+                  f"| **{ratio_fd:.0f}x** / {ratio_an:.0f}x "
+                  f"| {1e6 * t_ours6:.0f} us ({steps6} steps), error {error(x_ours6, reference):.1e} "
+                  f"| {t_fd / t_ours6:.0f}x / {t_an / t_ours6:.0f}x |")
+            print(f"  (reference's own error, Radau 1e-11 against 1e-12: {error(looser, reference):.1e})",
+                  file=sys.stderr)
+    worst = min(r[0] for r in ratios)
+    accurate = all(r[2] for r in ratios)
+    print(f"\nerror: max |x - x_ref| / max |x_ref|, x_ref scipy Radau at rtol = atol = 1e-12.")
+    print(f"target >= 1000x scipy Radau (rtol 1e-6) at equal or better accuracy: worst {worst:.0f}x "
+          f"({'met' if worst >= 1000 and accurate else 'MISSED'}; against the analytic-Jacobian Radau "
+          f"{min(r[1] for r in ratios):.0f}x)")
+
+
+if __name__ == "__main__":
+    main()
