@@ -27,6 +27,7 @@ std::vector<double> NaiveCounter::count(std::span<const double> voltage, std::sp
   for (double& v : centred) v -= mean;
   const AmplitudeSpectrum spectrum = analyzer_->analyse(centred, sample_rate_hz_);
   std::vector<double> counts;
+  PeakSearchShared shared;  // one floor and one refinement per peak for all thresholds
   for (double threshold : thresholds) {
     PeakOptions options;
     options.prominence_over_floor = threshold;
@@ -35,7 +36,7 @@ std::vector<double> NaiveCounter::count(std::span<const double> voltage, std::sp
     // A floor window of half the band: local enough to follow the lines' skirts, wide
     // enough that the lines themselves do not raise it.
     options.floor_window_hz = 0.5 * (band_high_hz_ - band_low_hz_);
-    counts.push_back(static_cast<double>(find_peaks(spectrum, *analyzer_, centred, sample_rate_hz_, options).size()));
+    counts.push_back(static_cast<double>(find_peaks(spectrum, *analyzer_, centred, sample_rate_hz_, options, &shared).size()));
   }
   return counts;
 }

@@ -188,7 +188,8 @@ double noise_floor(const AmplitudeSpectrum& spectrum) {
 }
 
 std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAnalyzer& analyzer,
-                             std::span<const double> signal, double sample_rate_hz, const PeakOptions& options) {
+                             std::span<const double> signal, double sample_rate_hz, const PeakOptions& options,
+                             PeakSearchShared* shared) {
   const auto& a = spectrum.amplitude;
   if (a.size() != spectrum.frequency_hz.size()) throw InputError("find_peaks: spectrum frequency and amplitude sizes differ");
   if (!(options.prominence_over_floor >= 0.0) || !(options.min_separation_hz >= 0.0) ||
@@ -207,9 +208,14 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
   // Every test below only removes a candidate, so they run cheapest first: height (a
   // prominence never exceeds its height) drops the noise maxima, side lobes go at the leakage
   // test, and the O(N) prominence walk is left for the few that could be lines.
-  const std::vector<double> floor = options.floor_window_hz > 0.0
-                                        ? local_noise_floor(spectrum, options.floor_window_hz)
-                                        : std::vector<double>(a.size(), noise_floor(spectrum));
+  PeakSearchShared local;
+  PeakSearchShared& reused = shared ? *shared : local;
+  if (reused.floor_window_hz != options.floor_window_hz) {
+    reused.floor = options.floor_window_hz > 0.0 ? local_noise_floor(spectrum, options.floor_window_hz)
+                                                 : std::vector<double>(a.size(), noise_floor(spectrum));
+    reused.floor_window_hz = options.floor_window_hz;
+  }
+  const std::vector<double>& floor = reused.floor;
   auto threshold = [&](std::size_t bin) { return options.prominence_over_floor * floor[bin]; };
   const double top = options.max_frequency_hz > 0.0 ? options.max_frequency_hz : INFINITY;
   std::vector<std::size_t> candidates;
@@ -259,9 +265,14 @@ std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAn
     }
     const double p = prominence(a, bin);
     if (p <= threshold(bin)) continue;
+    if (const auto known = reused.refined.find(bin); known != reused.refined.end()) {
+      peaks.push_back(known->second);
+      continue;
+    }
     const Candidate candidate{bin, p};
     const std::optional<Peak> newton = refine_by_newton(spectrum, windowed, window_sum, sample_rate_hz, candidate);
     peaks.push_back(newton ? *newton : refine_by_grid(spectrum, analyzer, signal, sample_rate_hz, candidate));
+    reused.refined.emplace(bin, peaks.back());
   }
   std::sort(peaks.begin(), peaks.end(), [](const Peak& x, const Peak& y) { return x.frequency_hz < y.frequency_hz; });
   return peaks;

@@ -2,6 +2,7 @@
 //! Spectral lines found in an amplitude spectrum (MODEL.md §3: a local maximum whose
 //! prominence exceeds a threshold set relative to a robust noise-floor estimate).
 #include <cstddef>
+#include <map>
 #include <span>
 #include <vector>
 
@@ -42,7 +43,21 @@ double noise_floor(const AmplitudeSpectrum& spectrum);
 
 //! Peaks of `spectrum`, sorted by frequency, with frequency and amplitude refined on the
 //! windowed DTFT of `signal` (the samples the spectrum was computed from).
+//! `shared`, when given, carries what does not depend on the options' thresholds between
+//! searches of the same spectrum and signal (PeakSearchShared).
+struct PeakSearchShared;
 std::vector<Peak> find_peaks(const AmplitudeSpectrum& spectrum, const SpectrumAnalyzer& analyzer,
-                             std::span<const double> signal, double sample_rate_hz, const PeakOptions& options);
+                             std::span<const double> signal, double sample_rate_hz, const PeakOptions& options,
+                             PeakSearchShared* shared = nullptr);
+
+//! What several find_peaks calls on one spectrum and signal (a sweep of thresholds) can
+//! share: a peak's refinement depends only on its bin and prominence, the local floor only
+//! on its window, so each is computed once. Results are bitwise those of separate calls.
+//! Use one per spectrum: it does not check that the spectrum or signal stayed the same.
+struct PeakSearchShared {
+  double floor_window_hz = -1.0;        //!< the window `floor` was computed for (-1: none yet)
+  std::vector<double> floor;            //!< the noise floor per bin
+  std::map<std::size_t, Peak> refined;  //!< refined peaks by bin
+};
 
 }  // namespace stengmc

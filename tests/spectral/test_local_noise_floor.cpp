@@ -94,5 +94,38 @@ TEST(LocalNoiseFloor, FindsAWeakLineTheGlobalFloorHidesAndHonoursTheBandLimit) {
   for (const Peak& p : banded) EXPECT_LE(p.frequency_hz, 300e3);
 }
 
+// A sweep of thresholds over one spectrum sharing its floor and refinements (the inverse's
+// naive counter) must give bitwise the peaks separate searches give, also when the floor
+// window changes between calls (the shared floor must then be recomputed).
+TEST(PeakSearchShared, GivesBitwiseTheLinesOfSeparateSearches) {
+  const std::size_t n = 8192;
+  const double rate = 1e6;
+  SpectrumAnalyzer analyzer(n, WindowKind::hann);
+  const double weak = 20.0 * expected_floor(analyzer, 40e3, rate);
+  const std::vector<double> x =
+      signal(n, rate, {{40.3e3, weak}, {97.1e3, 3.0 * weak}, {120.4e3, 0.02}, {400.7e3, 0.5}, {402.9e3, 0.05}});
+  const AmplitudeSpectrum s = analyzer.analyse(x, rate);
+  PeakSearchShared shared;
+  std::size_t compared = 0;
+  for (double window_hz : {20e3, 0.0, 50e3}) {
+    for (double threshold : {1.5, 3.0, 10.0, 30.0}) {
+      PeakOptions options;
+      options.prominence_over_floor = threshold;
+      options.floor_window_hz = window_hz;
+      const std::vector<Peak> alone = find_peaks(s, analyzer, x, rate, options);
+      const std::vector<Peak> reused = find_peaks(s, analyzer, x, rate, options, &shared);
+      ASSERT_EQ(alone.size(), reused.size()) << "window " << window_hz << " Hz, threshold " << threshold;
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        EXPECT_EQ(alone[i].bin, reused[i].bin);
+        EXPECT_EQ(alone[i].frequency_hz, reused[i].frequency_hz);
+        EXPECT_EQ(alone[i].amplitude, reused[i].amplitude);
+        EXPECT_EQ(alone[i].prominence, reused[i].prominence);
+      }
+      compared += alone.size();
+    }
+  }
+  EXPECT_GE(compared, 12u) << "the sweep should find lines to compare";
+}
+
 }  // namespace
 }  // namespace stengmc
