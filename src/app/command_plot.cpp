@@ -9,8 +9,8 @@
 #include "app/install_layout.hpp"
 #include "core/error.hpp"
 #include "io/guarded_read.hpp"
-#include "io/hdf5_file.hpp"
-#include "io/input_file.hpp"
+#include "core/hdf5_file.hpp"
+#include "core/input_file.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc::app {

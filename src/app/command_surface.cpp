@@ -12,7 +12,7 @@
 #include "io/run_file.hpp"
 #include "io/study.hpp"
 #include "io/surface_file.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "pipeline/surface_examination.hpp"
 
 namespace stengmc::app {

@@ -4,8 +4,8 @@
 #include <span>
 #include <vector>
 
-#include "surface/asperity.hpp"
-#include "tribology/motion.hpp"
+#include "model/asperity.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

@@ -11,7 +11,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
-#include "tribology/hermite.hpp"
+#include "model/hermite.hpp"
 
 namespace stengmc {
 

@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
-#include "surface/asperity.hpp"
-#include "tribology/motion.hpp"
+#include "model/asperity.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

@@ -7,7 +7,7 @@
 
 #include "core/random_stream.hpp"
 #include "ensemble/realisation_record.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 
 namespace stengmc {
 

@@ -15,8 +15,8 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "io/posix_file.hpp"
-#include "io/temporary_file.hpp"
+#include "core/posix_file.hpp"
+#include "core/temporary_file.hpp"
 
 namespace stengmc {
 
@@ -315,7 +315,7 @@ void Journal::create(const JournalIdentity& identity) {
   // with its whole header or not at all. link() (unlike rename) never replaces a journal
   // another run created meanwhile; that one is then opened and its identity checked.
   // The temporary is removed however this ends, also by a SIGTERM, and a stale one of a
-  // killed run by the next (io/temporary_file.hpp).
+  // killed run by the next (core/temporary_file.hpp).
   const TemporaryFile temporary(path_);
   write_file_durably(temporary.path(), header.bytes(), path_, "the journal header");
   if (::link(temporary.path().c_str(), path_.c_str()) != 0 && errno != EEXIST &&

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/distribution.hpp"
 
 namespace stengmc {

@@ -2,11 +2,12 @@
 
 #include <cmath>
 #include <sstream>
+#include <toml++/toml.h>  // the [[asperity]] entries, which TomlDocument cannot walk without reading them
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 
 namespace stengmc {
 

@@ -8,7 +8,7 @@
 
 #include "circuit/circuit_solver.hpp"
 #include "io/study.hpp"
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "tribology/model2.hpp"
 
 namespace stengmc {

@@ -5,7 +5,7 @@
 
 #include "core/error.hpp"
 #include "inverse/naive_count.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc {

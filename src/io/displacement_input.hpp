@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 
 namespace stengmc {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc {

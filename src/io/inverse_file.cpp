@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc {

@@ -4,7 +4,7 @@
 #include <system_error>
 
 #include "core/error.hpp"
-#include "io/input_file.hpp"
+#include "core/input_file.hpp"
 
 namespace stengmc {
 

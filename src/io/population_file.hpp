@@ -28,9 +28,9 @@
 #include <span>
 #include <string>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "surface/population.hpp"
-#include "surface/validity.hpp"
+#include "pipeline/validity.hpp"
 
 namespace stengmc {
 

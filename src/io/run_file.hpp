@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"

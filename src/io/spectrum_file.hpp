@@ -1,6 +1,6 @@
 #pragma once
 //! The /spectrum and /spectrogram groups of an output file (README: output files).
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "pipeline/analyse_spectra.hpp"
 #include "spectral/spectrum_settings.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/surface.hpp"
 
 namespace stengmc {

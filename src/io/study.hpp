@@ -10,7 +10,7 @@
 #include "circuit/circuit_solver.hpp"
 #include "ensemble/ensemble_settings.hpp"
 #include "spectral/spectrum_settings.hpp"
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "surface/surface.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"

@@ -9,7 +9,7 @@
 #include "io/study.hpp"
 #include "pipeline/analyse_spectra.hpp"
 #include "pipeline/work_estimate.hpp"
-#include "surface/validity.hpp"
+#include "pipeline/validity.hpp"
 #include "tribology/events.hpp"
 #include "tribology/trajectory.hpp"
 

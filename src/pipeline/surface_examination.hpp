@@ -9,7 +9,7 @@
 #include "core/progress.hpp"
 #include "surface/distribution.hpp"
 #include "surface/surface.hpp"
-#include "surface/validity.hpp"
+#include "pipeline/validity.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
 

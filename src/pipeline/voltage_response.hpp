@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "tribology/model2.hpp"
 #include "tribology/time_grid.hpp"
 

@@ -27,7 +27,7 @@ inline constexpr double RUN_BYTES_PER_ASPERITY_SAMPLE = 64;
 //! Memory per output sample shared by all asperities [bytes]: times, V, Q, measured V, ...
 inline constexpr double RUN_BYTES_PER_SAMPLE = 64;
 //! Memory of an output file per value written [bytes]: the file is built in memory and
-//! copied once while it is written out (io/hdf5_file.hpp).
+//! copied once while it is written out (core/hdf5_file.hpp).
 inline constexpr double FILE_BYTES_PER_VALUE = 16;
 //! Memory per stick/slip event [bytes]: Model 1's phase (its closed-form coefficients),
 //! the event in the trajectory and in the run's sorted list, its row in the file.

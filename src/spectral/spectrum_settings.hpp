@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <optional>
 
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "spectral/esprit.hpp"
 #include "spectral/identifiability.hpp"
 #include "spectral/peaks.hpp"

@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "core/random_stream.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/distribution.hpp"
 
 namespace stengmc {

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "core/random_stream.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 
 namespace stengmc {
 

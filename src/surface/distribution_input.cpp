@@ -8,8 +8,8 @@
 
 #include "core/format.hpp"
 #include "core/error.hpp"
-#include "io/input_file.hpp"
-#include "io/toml_reader.hpp"
+#include "core/input_file.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/distribution.hpp"
 
 namespace stengmc {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <optional>
 
-#include "tribology/model1.hpp"
+#include "model/asperity.hpp"
 
 namespace stengmc {
 

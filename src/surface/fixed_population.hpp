@@ -3,8 +3,8 @@
 //! Random populations (MODEL.md §4) will sit beside this as another surface kind.
 #include <vector>
 
-#include "io/toml_reader.hpp"
-#include "surface/asperity.hpp"
+#include "core/toml_reader.hpp"
+#include "model/asperity.hpp"
 
 namespace stengmc {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "surface/interaction.hpp"
 #include "surface/random_surface.hpp"
 

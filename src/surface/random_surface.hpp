@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/toml_reader.hpp"
-#include "surface/asperity.hpp"
+#include "core/toml_reader.hpp"
+#include "model/asperity.hpp"
 #include "surface/copula.hpp"
 #include "surface/distribution.hpp"
 #include "surface/interaction.hpp"

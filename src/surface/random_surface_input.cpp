@@ -7,7 +7,7 @@
 
 #include "core/format.hpp"
 #include "surface/hertz_contact.hpp"
-#include "tribology/model1.hpp"
+#include "model/asperity.hpp"
 #include "surface/random_surface.hpp"
 
 namespace stengmc {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/toml_reader.hpp"
-#include "surface/asperity.hpp"
+#include "core/toml_reader.hpp"
+#include "model/asperity.hpp"
 #include "surface/population.hpp"
 #include "surface/random_surface.hpp"
 

@@ -3,7 +3,7 @@
 #include <optional>
 #include <span>
 
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

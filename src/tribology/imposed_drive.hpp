@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "tribology/model1.hpp"
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

@@ -3,7 +3,7 @@
 //! (MODEL.md §1; paper Eq. 1 with its sign typo corrected).
 #include <cstddef>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/time_grid.hpp"
 #include "tribology/trajectory.hpp"
@@ -24,10 +24,6 @@ struct Model1Params {
   Model1Solver solver = Model1Solver::exact;
   std::size_t euler_cromer_substeps = 1;  //!< euler_cromer steps per output step
 };
-
-//! Largest |drive phase| [rad]: omega t + phi is a double, and a phase of 1e15 rad keeps no
-//! digits of omega t (the fuzz tests found the exact solver looping on one).
-inline constexpr double MAX_DRIVE_PHASE_RAD = 1e6;
 
 //! Imposed displacement x0(t) = A sin(omega t + phi) [m].
 double imposed_displacement(const Model1Params& params, const Asperity& asperity, double t_s);

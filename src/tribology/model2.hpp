@@ -1,6 +1,6 @@
 #pragma once
 //! Model 2: mass on a moving belt with Stribeck friction (MODEL.md §1; paper Eq. 2).
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/time_grid.hpp"
 #include "tribology/trajectory.hpp"

@@ -6,7 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
+#include "model/motion_knot.hpp"
 #include "tribology/model2.hpp"
 
 namespace stengmc {
@@ -77,14 +78,6 @@ class StribeckFriction {
   double decay_s_per_m_;
   double sharpness_s_per_m_;
   bool literal_;
-};
-
-//! One accepted integrator step end: the data a quintic Hermite interpolant needs.
-struct MotionKnot {
-  double t_s = 0.0;                //!< time [s]
-  double x_m = 0.0;                //!< displacement [m]
-  double v_m_per_s = 0.0;          //!< velocity [m/s]
-  double a_m_per_s2 = 0.0;         //!< acceleration from the ODE at (x, v) [m/s^2]
 };
 
 //! Terms of a sliding-propagator piece's polynomial (sliding_propagator.hpp).

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "tribology/events.hpp"
-#include "tribology/hermite.hpp"
+#include "model/hermite.hpp"
 #include "tribology/model2_integrator.hpp"
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

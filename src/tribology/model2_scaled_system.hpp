@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 #include "tribology/model2.hpp"
 #include "tribology/model2_integrator.hpp"
 

@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

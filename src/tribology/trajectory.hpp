@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "tribology/events.hpp"
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc {
 

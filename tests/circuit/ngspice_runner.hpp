@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "surface/asperity.hpp"
+#include "model/asperity.hpp"
 
 namespace stengmc::test {
 

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {

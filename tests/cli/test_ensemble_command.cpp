@@ -21,7 +21,7 @@
 
 #include "ensemble/journal.hpp"
 #include "ensemble/realisation_record.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 extern char** environ;

@@ -13,7 +13,7 @@
 #include "core/random_stream.hpp"
 #include "inverse/calibration_run.hpp"
 #include "inverse/simulated_record.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 #include "support/test_surfaces.hpp"
 

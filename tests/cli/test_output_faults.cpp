@@ -34,7 +34,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 #include "support/test_surfaces.hpp"
 

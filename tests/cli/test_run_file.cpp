@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/constants.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {

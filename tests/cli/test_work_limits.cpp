@@ -13,7 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/study.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "support/cli_runner.hpp"

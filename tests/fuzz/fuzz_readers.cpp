@@ -33,11 +33,11 @@
 
 #include "core/error.hpp"
 #include "io/displacement_input.hpp"
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
 #include "io/study.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
 #include "pipeline/surface_examination.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 namespace stengmc::testing {
 

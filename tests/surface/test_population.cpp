@@ -20,13 +20,13 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/hertz_contact.hpp"
 #include "surface/materials.hpp"
 #include "surface/population.hpp"
 #include "surface/random_surface.hpp"
 #include "surface/surface.hpp"
-#include "surface/validity.hpp"
+#include "pipeline/validity.hpp"
 
 namespace stengmc {
 namespace {

@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 #include "surface/random_surface.hpp"
 #include "surface/surface.hpp"
 #include "support/cli_runner.hpp"

@@ -2,13 +2,13 @@
 //! Typed, validated access to a TOML document. Every key read is remembered, so once a
 //! reader is done, any key nobody asked for is reported as unknown (pbrt's ReportUnused).
 //! Every error names the file, the line, the key, the value and what was expected.
-#include <map>
+//! toml++ stays out of this header: every settings reader includes it, and toml++ is the
+//! heaviest header of the build. The tree lives in TomlDocument::Tree (toml_reader.cpp).
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 namespace stengmc {
@@ -18,8 +18,6 @@ class TomlDocument;
 //! One table of a document, read key by key.
 class TomlTable {
  public:
-  TomlTable(TomlDocument& document, const toml::table& table, std::string path);
-
   //! A number (integer or float); `fallback` when absent.
   double number(std::string_view key, double fallback);
   //! A number that must be present.
@@ -55,11 +53,14 @@ class TomlTable {
   [[nodiscard]] std::string location(std::string_view key) const;
 
  private:
-  const toml::node* lookup(std::string_view key);
-  std::string describe(const toml::node& node) const;
+  friend class TomlDocument;
+  //! `table` is a toml::table of `document`'s tree.
+  TomlTable(TomlDocument& document, const void* table, std::string path);
+  //! The key's toml::node (nullptr when absent), marked read.
+  const void* lookup(std::string_view key);
 
   TomlDocument* document_;
-  const toml::table* table_;
+  const void* table_;  //!< a toml::table owned by the document (opaque here: see above)
   std::string path_;
 };
 
@@ -90,16 +91,19 @@ class TomlDocument {
   [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] const std::string& text() const { return text_; }
 
+  ~TomlDocument();
+  TomlDocument(const TomlDocument&) = delete;
+  TomlDocument& operator=(const TomlDocument&) = delete;
+
  private:
   friend class TomlTable;
-  TomlDocument(toml::table table, std::string file, std::string text);
-  void note_read(const toml::table& table, std::string_view key);
-  void collect_unknown(const toml::table& table, const std::string& path, std::vector<std::string>& out) const;
+  struct Tree;  //!< the parsed toml::table and, per table, the keys read from it
+  TomlDocument(std::unique_ptr<Tree> tree, std::string file, std::string text);
+  void collect_unknown(const void* table, const std::string& path, std::vector<std::string>& out) const;
 
-  toml::table table_;
+  std::unique_ptr<Tree> tree_;
   std::string file_;
   std::string text_;
-  std::map<const toml::table*, std::set<std::string, std::less<>>> read_;
   std::set<std::string, std::less<>> deferred_;
 };
 

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/temporary_file.hpp"
+#include "core/temporary_file.hpp"
 
 namespace stengmc {
 
@@ -19,7 +19,7 @@ namespace stengmc {
 //! naming the file and the object.
 //!
 //! Builds a new HDF5 file in memory; `commit()` writes it under a temporary name
-//! (io/temporary_file.hpp), fsyncs it and renames it into place, so a killed or failed run
+//! (core/temporary_file.hpp), fsyncs it and renames it into place, so a killed or failed run
 //! never leaves a half-written result under the final name, and a failed write (a full
 //! disk) is reported with the system's reason ("No space left on device").
 class Hdf5Writer {

@@ -1,4 +1,4 @@
-#include "io/temporary_file.hpp"
+#include "core/temporary_file.hpp"
 
 #include <signal.h>
 #include <unistd.h>

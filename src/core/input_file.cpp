@@ -1,4 +1,4 @@
-#include "io/input_file.hpp"
+#include "core/input_file.hpp"
 
 #include <charconv>
 #include <cmath>

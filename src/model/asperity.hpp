@@ -23,4 +23,8 @@ struct Asperity {
   StengElement element;                      //!< its S-TENG element
 };
 
+//! Largest |drive phase| [rad]: omega t + phi is a double, and a phase of 1e15 rad keeps no
+//! digits of omega t (the fuzz tests found the exact solver looping on one).
+inline constexpr double MAX_DRIVE_PHASE_RAD = 1e6;
+
 }  // namespace stengmc

@@ -1,4 +1,4 @@
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,17 +1,39 @@
-#include "core/format.hpp"
-#include "io/toml_reader.hpp"
+#include "core/toml_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <map>
+#include <toml++/toml.h>
 
 #include "core/error.hpp"
-#include "io/input_file.hpp"
+#include "core/format.hpp"
+#include "core/input_file.hpp"
 
 namespace stengmc {
 
+struct TomlDocument::Tree {
+  toml::table root;
+  std::map<const toml::table*, std::set<std::string, std::less<>>> read;  //!< keys asked for, per table
+
+  void note_read(const toml::table& table, std::string_view key) { read[&table].emplace(key); }
+};
+
 namespace {
+
+const toml::table& table_of(const void* table) { return *static_cast<const toml::table*>(table); }
+const toml::node* node_of(const void* node) { return static_cast<const toml::node*>(node); }
+
+std::string describe(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date or time";
+  }
+}
 
 std::string join(const std::vector<std::string_view>& items) {
   std::string out;
@@ -23,8 +45,10 @@ std::string join(const std::vector<std::string_view>& items) {
 
 // ---------------------------------------------------------------- TomlDocument
 
-TomlDocument::TomlDocument(toml::table table, std::string file, std::string text)
-    : table_(std::move(table)), file_(std::move(file)), text_(std::move(text)) {}
+TomlDocument::TomlDocument(std::unique_ptr<Tree> tree, std::string file, std::string text)
+    : tree_(std::move(tree)), file_(std::move(file)), text_(std::move(text)) {}
+
+TomlDocument::~TomlDocument() = default;
 
 std::unique_ptr<TomlDocument> TomlDocument::from_file(const std::string& file) {
   return from_string(read_text_file(file, "a TOML file (study, surface or settings)"), file);
@@ -32,8 +56,9 @@ std::unique_ptr<TomlDocument> TomlDocument::from_file(const std::string& file) {
 
 std::unique_ptr<TomlDocument> TomlDocument::from_string(const std::string& text, const std::string& file) {
   try {
-    toml::table table = toml::parse(text, file);
-    return std::unique_ptr<TomlDocument>(new TomlDocument(std::move(table), file, text));
+    auto tree = std::make_unique<Tree>();
+    tree->root = toml::parse(text, file);
+    return std::unique_ptr<TomlDocument>(new TomlDocument(std::move(tree), file, text));
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
     throw InputError(file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
@@ -41,7 +66,7 @@ std::unique_ptr<TomlDocument> TomlDocument::from_string(const std::string& text,
   }
 }
 
-TomlTable TomlDocument::root() { return TomlTable(*this, table_, ""); }
+TomlTable TomlDocument::root() { return TomlTable(*this, &tree_->root, ""); }
 
 namespace {
 
@@ -61,7 +86,7 @@ std::vector<std::string> split_path(std::string_view dotted) {
 
 void TomlDocument::set_number(std::string_view dotted_path, double value) {
   const std::vector<std::string> parts = split_path(dotted_path);
-  toml::table* table = &table_;
+  toml::table* table = &tree_->root;
   std::string walked;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     walked += (walked.empty() ? "" : ".") + parts[i];
@@ -80,7 +105,7 @@ void TomlDocument::set_number(std::string_view dotted_path, double value) {
 
 bool TomlDocument::has_path(std::string_view dotted_path) const {
   const std::vector<std::string> parts = split_path(dotted_path);
-  const toml::table* table = &table_;
+  const toml::table* table = &tree_->root;
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const toml::node* node = table->get(parts[i]);
     if (!node) return false;
@@ -91,40 +116,39 @@ bool TomlDocument::has_path(std::string_view dotted_path) const {
   return true;
 }
 
-void TomlDocument::note_read(const toml::table& table, std::string_view key) { read_[&table].emplace(key); }
-
 void TomlDocument::defer_table(std::string_view key) {
-  note_read(table_, key);
+  tree_->note_read(tree_->root, key);
   deferred_.emplace(key);
 }
 
-void TomlDocument::collect_unknown(const toml::table& table, const std::string& path,
-                                   std::vector<std::string>& out) const {
-  const auto found = read_.find(&table);
+void TomlDocument::collect_unknown(const void* opaque, const std::string& path, std::vector<std::string>& out) const {
+  const toml::table& table = table_of(opaque);
+  const auto& read = tree_->read;
+  const auto found = read.find(&table);
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
-    const bool was_read = found != read_.end() && found->second.count(name) > 0;
+    const bool was_read = found != read.end() && found->second.count(name) > 0;
     const std::string qualified = path.empty() ? name : path + "." + name;
     if (!was_read) {
       std::string allowed;
-      if (found != read_.end())
+      if (found != read.end())
         for (const auto& k : found->second) allowed += (allowed.empty() ? "" : ", ") + k;
       out.push_back(file_ + ":" + std::to_string(node.source().begin.line) + ": unknown key '" + qualified +
                     "'" + (allowed.empty() ? "" : "; allowed here: " + allowed));
       continue;
     }
-    if (&table == &table_ && deferred_.count(name) > 0) continue;
-    if (const auto* sub = node.as_table()) collect_unknown(*sub, qualified, out);
+    if (&table == &tree_->root && deferred_.count(name) > 0) continue;
+    if (const auto* sub = node.as_table()) collect_unknown(sub, qualified, out);
     if (const auto* array = node.as_array())
       for (std::size_t i = 0; i < array->size(); ++i)
         if (const auto* sub = (*array)[i].as_table())
-          collect_unknown(*sub, qualified + "[" + std::to_string(i) + "]", out);
+          collect_unknown(sub, qualified + "[" + std::to_string(i) + "]", out);
   }
 }
 
 void TomlDocument::reject_unknown_keys(std::string_view prefix) const {
   std::vector<std::string> all;
-  collect_unknown(table_, "", all);
+  collect_unknown(&tree_->root, "", all);
   std::vector<std::string> unknown;
   const std::string marker = "unknown key '" + std::string(prefix) + (prefix.empty() ? "" : ".");
   for (auto& line : all)
@@ -137,12 +161,12 @@ void TomlDocument::reject_unknown_keys(std::string_view prefix) const {
 
 // ---------------------------------------------------------------- TomlTable
 
-TomlTable::TomlTable(TomlDocument& document, const toml::table& table, std::string path)
-    : document_(&document), table_(&table), path_(std::move(path)) {}
+TomlTable::TomlTable(TomlDocument& document, const void* table, std::string path)
+    : document_(&document), table_(table), path_(std::move(path)) {}
 
-const toml::node* TomlTable::lookup(std::string_view key) {
-  document_->note_read(*table_, key);
-  return table_->get(key);
+const void* TomlTable::lookup(std::string_view key) {
+  document_->tree_->note_read(table_of(table_), key);
+  return table_of(table_).get(key);
 }
 
 std::string TomlTable::qualified(std::string_view key) const {
@@ -150,10 +174,10 @@ std::string TomlTable::qualified(std::string_view key) const {
 }
 
 std::string TomlTable::location(std::string_view key) const {
-  const toml::node* node = table_->get(key);
+  const toml::node* node = table_of(table_).get(key);
   // A value set by a parameter sweep has no line in the file.
   if (node && node->source().begin.line == 0) return document_->file() + " (value set by the sweep)";
-  const auto line = node ? node->source().begin.line : table_->source().begin.line;
+  const auto line = node ? node->source().begin.line : table_of(table_).source().begin.line;
   return document_->file() + ":" + std::to_string(line);
 }
 
@@ -161,22 +185,10 @@ void TomlTable::fail(std::string_view key, const std::string& what) const {
   throw InputError(location(key) + ": " + qualified(key) + " " + what);
 }
 
-std::string TomlTable::describe(const toml::node& node) const {
-  switch (node.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    default: return "a date or time";
-  }
-}
-
 bool TomlTable::has(std::string_view key) { return lookup(key) != nullptr; }
 
 double TomlTable::number(std::string_view key, double fallback) {
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return fallback;
   double value = 0.0;
   if (const auto* i = node->as_integer()) {
@@ -208,7 +220,7 @@ double TomlTable::non_negative(std::string_view key, double fallback) {
 }
 
 long long TomlTable::integer(std::string_view key, long long fallback, long long minimum) {
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return fallback;
   const auto* i = node->as_integer();
   if (!i) fail(key, "is " + describe(*node) + "; expected an integer");
@@ -217,7 +229,7 @@ long long TomlTable::integer(std::string_view key, long long fallback, long long
 }
 
 bool TomlTable::boolean(std::string_view key, bool fallback) {
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return fallback;
   const auto* b = node->as_boolean();
   if (!b) fail(key, "is " + describe(*node) + "; expected true or false");
@@ -225,7 +237,7 @@ bool TomlTable::boolean(std::string_view key, bool fallback) {
 }
 
 std::string TomlTable::string(std::string_view key, std::string_view fallback) {
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return std::string(fallback);
   const auto* s = node->as_string();
   if (!s) fail(key, "is " + describe(*node) + "; expected a string");
@@ -242,7 +254,7 @@ std::string TomlTable::choice(std::string_view key, std::string_view fallback,
 
 std::vector<double> TomlTable::number_list(std::string_view key) {
   std::vector<double> out;
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return out;
   const auto* array = node->as_array();
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of numbers");
@@ -264,7 +276,7 @@ std::vector<double> TomlTable::number_list(std::string_view key) {
 
 std::vector<std::string> TomlTable::string_list(std::string_view key, const std::vector<std::string_view>& allowed) {
   std::vector<std::string> out;
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return out;
   const auto* array = node->as_array();
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of strings, each one of " + join(allowed));
@@ -279,23 +291,23 @@ std::vector<std::string> TomlTable::string_list(std::string_view key, const std:
 }
 
 std::optional<TomlTable> TomlTable::table(std::string_view key) {
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return std::nullopt;
   const auto* sub = node->as_table();
   if (!sub) fail(key, "is " + describe(*node) + "; expected a table");
-  return TomlTable(*document_, *sub, path_.empty() ? std::string(key) : path_ + "." + std::string(key));
+  return TomlTable(*document_, sub, path_.empty() ? std::string(key) : path_ + "." + std::string(key));
 }
 
 std::vector<TomlTable> TomlTable::table_array(std::string_view key) {
   std::vector<TomlTable> out;
-  const toml::node* node = lookup(key);
+  const toml::node* node = node_of(lookup(key));
   if (!node) return out;
   const auto* array = node->as_array();
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of tables ([[" + std::string(key) + "]])");
   for (std::size_t i = 0; i < array->size(); ++i) {
     const auto* sub = (*array)[i].as_table();
     if (!sub) fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a table");
-    out.emplace_back(*document_, *sub, (path_.empty() ? "" : path_ + ".") + std::string(key) + "[" + std::to_string(i) + "]");
+    out.push_back(TomlTable(*document_, sub, (path_.empty() ? "" : path_ + ".") + std::string(key) + "[" + std::to_string(i) + "]"));
   }
   return out;
 }

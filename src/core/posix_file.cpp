@@ -1,4 +1,4 @@
-#include "io/posix_file.hpp"
+#include "core/posix_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "tribology/hermite.hpp"
+#include "model/hermite.hpp"
 
 namespace stengmc {
 

@@ -1,4 +1,4 @@
-#include "surface/validity.hpp"
+#include "pipeline/validity.hpp"
 
 #include <algorithm>
 #include <cmath>

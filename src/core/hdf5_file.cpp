@@ -1,4 +1,4 @@
-#include "io/hdf5_file.hpp"
+#include "core/hdf5_file.hpp"
 
 #include <algorithm>
 
@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "core/error.hpp"
-#include "io/input_file.hpp"
-#include "io/posix_file.hpp"
+#include "core/input_file.hpp"
+#include "core/posix_file.hpp"
 
 namespace stengmc {
 

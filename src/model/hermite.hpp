@@ -4,8 +4,8 @@
 //! recorded densely.
 #include <array>
 
-#include "tribology/model2_integrator.hpp"
-#include "tribology/motion.hpp"
+#include "model/motion.hpp"
+#include "model/motion_knot.hpp"
 
 namespace stengmc {
 
