@@ -32,13 +32,13 @@ LAYERS = textwrap.dedent("""\
 CLEAN = {
     "core/error.hpp": "#pragma once\n",
     "core/error.cpp": '#include "core/error.hpp"\n',
-    "model/asperity.hpp": '#pragma once\n#include "core/error.hpp"\n#include <vector>\n',
+    "surface/asperity.hpp": '#pragma once\n#include "core/error.hpp"\n#include <vector>\n',
     "tribology/model.hpp": '#pragma once\n#include "core/error.hpp"\n',
     "tribology/model.cpp": '#include "model.hpp"\n#include "core/error.hpp"\n',  # beside-the-file form
-    "pipeline/run.hpp": '#pragma once\n#include "model/asperity.hpp"\n#include "tribology/model.hpp"\n',
+    "pipeline/run.hpp": '#pragma once\n#include "surface/asperity.hpp"\n#include "tribology/model.hpp"\n',
     # Owned by pipeline although it sits in surface/ (the longest path wins), so it may
     # include both models.
-    "surface/examine.hpp": '#pragma once\n#include "model/asperity.hpp"\n#include "tribology/model.hpp"\n',
+    "surface/examine.hpp": '#pragma once\n#include "surface/asperity.hpp"\n#include "tribology/model.hpp"\n',
 }
 
 
@@ -82,18 +82,18 @@ class LayerCheckTest(unittest.TestCase):
         self.assertIn("upward edges: 1 include(s)", out)
 
     def test_planted_sideways_edge_fails(self):
-        files = self.planted(**{"tribology/model.hpp": '#pragma once\n#include "model/asperity.hpp"\n'})
+        files = self.planted(**{"tribology/model.hpp": '#pragma once\n#include "surface/asperity.hpp"\n'})
         status, out = self.check(files)
         self.assertEqual(status, 1, out)
         self.assertIn("sideways edges: 1 include(s)", out)
-        self.assertIn("tribology/model.hpp:2 -> model/asperity.hpp", out)
+        self.assertIn("tribology/model.hpp:2 -> surface/asperity.hpp", out)
         self.assertIn("component cycles: 0 group(s)", out)
 
     def test_planted_cycle_between_components_fails(self):
         # surface <-> tribology through two headers: both sideways, and a two-way pair.
         files = self.planted(**{
-            "tribology/model.hpp": '#pragma once\n#include "model/asperity.hpp"\n',
-            "model/asperity.hpp": '#pragma once\n#include "tribology/model.hpp"\n',
+            "tribology/model.hpp": '#pragma once\n#include "surface/asperity.hpp"\n',
+            "surface/asperity.hpp": '#pragma once\n#include "tribology/model.hpp"\n',
         })
         status, out = self.check(files)
         self.assertEqual(status, 1, out)
