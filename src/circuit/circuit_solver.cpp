@@ -3,10 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include "core/constants.hpp"
+#include "circuit/circuit_errors.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 
@@ -53,23 +53,6 @@ struct ElementConstants {
   double capacitance_per_m = 0.0;  // eps0 w / d0 [F/m]
   double length_m = 0.0;           // l [m]
 };
-
-[[noreturn]] void throw_capacitance_not_positive(double t, double capacitance) {
-  std::ostringstream msg;
-  msg.precision(10);
-  msg << "circuit: element capacitance not positive at t = " << t << " s (sum C_i + C_L = " << capacitance
-      << " F): x reached l; the S-TENG element formulas (MODEL.md §2) hold only for x < l";
-  throw ModelError(msg.str());
-}
-
-[[noreturn]] void throw_non_finite(const std::string& what, double t) {
-  std::ostringstream msg;
-  msg.precision(10);
-  msg << "circuit: the circuit produced a non-finite " << what << " at t = " << t
-      << " s: check the load resistance, load capacitance, sigma, d0, w and l (and the displacements) for "
-         "physically plausible values";
-  throw ModelError(msg.str());
-}
 
 class ParallelElements {
  public:

@@ -5,10 +5,10 @@
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 #include <string>
 
 #include "core/constants.hpp"
+#include "circuit/circuit_errors.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "model/hermite.hpp"
@@ -58,23 +58,6 @@ NodeWeights weights_at(double s) {
     slopes(k) = k == 0 ? 0.0 : k * std::pow(s, k - 1);
   }
   return {powers * basis(), slopes * basis()};
-}
-
-[[noreturn]] void throw_capacitance_not_positive(double t, double capacitance) {
-  std::ostringstream msg;
-  msg.precision(10);
-  msg << "circuit: element capacitance not positive at t = " << t << " s (sum C_i + C_L = " << capacitance
-      << " F): x reached l; the S-TENG element formulas (MODEL.md §2) hold only for x < l";
-  throw ModelError(msg.str());
-}
-
-[[noreturn]] void throw_non_finite(const std::string& what, double t) {
-  std::ostringstream msg;
-  msg.precision(10);
-  msg << "circuit: the circuit produced a non-finite " << what << " at t = " << t
-      << " s: check the load resistance, load capacitance, sigma, d0, w and l (and the displacements) for "
-         "physically plausible values";
-  throw ModelError(msg.str());
 }
 
 }  // namespace

@@ -24,7 +24,10 @@ std::vector<double> simulate_record(const KnownDevice& device, std::span<const d
   }
   study.surface = std::make_shared<const Surface>(Surface::fixed_list(study.asperities));
   study.population = study.surface->sample(0, 0);
-  RunResult result = run_study(study, RunOptions{.show_progress = false, .keep_traces = false});
+  RunOptions options;
+  options.show_progress = false;
+  options.keep_traces = false;  // only V is wanted
+  RunResult result = run_study(study, options);
   if (!result.valid) throw ModelError("simulate_record: an asperity reached l");
   result.circuit.voltage_v.resize(grid.samples);
   return std::move(result.circuit.voltage_v);

@@ -17,6 +17,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "support/analytic_motion.hpp"
+#include "support/circuit_cases.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/sampled_motion.hpp"
 
@@ -25,12 +26,8 @@ namespace {
 
 using testing::SineMotion;
 using testing::UniformMotion;
-
-std::vector<double> uniform_times(double end_s, std::size_t intervals) {
-  std::vector<double> t(intervals + 1);
-  for (std::size_t j = 0; j <= intervals; ++j) t[j] = end_s * static_cast<double>(j) / static_cast<double>(intervals);
-  return t;
-}
+using testing::FourElements;
+using testing::uniform_times;
 
 double relative_l2(const std::vector<double>& reference, const std::vector<double>& value, std::size_t first = 0) {
   double difference = 0.0, norm = 0.0;
@@ -41,26 +38,9 @@ double relative_l2(const std::vector<double>& reference, const std::vector<doubl
   return std::sqrt(difference / norm);
 }
 
-// ---- V1 (MODEL.md §2; Niu et al. Table 1; the paper's appendix validation) ----
-struct V1 {
-  StengElement element{100e-6, 31.25e-6, 0.05, 0.08};
-  double v = 1.0;
-  double r = 1e9;
-  double a() const { return element.effective_thickness_m / (r * EPSILON_0 * element.width_m * v); }
-  double charge(double t) const {
-    const double l = element.length_m, u = l - v * t, s = a();
-    return element.charge_density_c_per_m2 * element.width_m * (l + s * u / (1 - s) - l * std::pow(u / l, s) / (1 - s));
-  }
-  double voltage(double t) const {
-    const double l = element.length_m, u = l - v * t, s = a();
-    return r * element.charge_density_c_per_m2 * element.width_m * s * v / (1 - s) * (std::pow(u / l, s - 1) - 1);
-  }
-  CircuitResult solve(std::size_t intervals, std::size_t substeps) const {
-    UniformMotion motion(0.0, v);
-    const Motion* motions[] = {&motion};
-    const StengElement elements[] = {element};
-    return solve_circuit_streamed(elements, motions, uniform_times(0.05, intervals), {r, 0.0, substeps});
-  }
+// ---- V1 (MODEL.md §2; support/circuit_cases.hpp) ----
+struct V1 : testing::V1Case {
+  V1() { solver = solve_circuit_streamed; }
 };
 
 TEST(ElementSumsV1, VoltageAndChargeMatchClosedFormAtFiftyMilliseconds) {
@@ -85,20 +65,7 @@ TEST(ElementSumsV1, ConvergesAtFifthOrder) {
   }
 }
 
-// ---- Four Table-2 elements on sinusoidal motions ----
-struct FourElements {
-  std::vector<StengElement> elements = std::vector<StengElement>(4);
-  std::vector<SineMotion> motions{{2e-6, 3e-6, 2 * PI * 0.796e6}, {2e-6, 3e-6, 2 * PI * 1.125e6, 0.3},
-                                  {2e-6, 3e-6, 2 * PI * 1.592e6, 1.1}, {2e-6, 3e-6, 2 * PI * 1.981e6, 2.0}};
-  std::vector<const Motion*> pointers() const { return {&motions[0], &motions[1], &motions[2], &motions[3]}; }
-  double quasi_static_voltage(double r, double t) const {
-    double source = 0.0;
-    for (std::size_t i = 0; i < 4; ++i)
-      source += elements[i].charge_density_c_per_m2 * elements[i].width_m * motions[i].at(t, Side::right).v_m_per_s;
-    return r * source;
-  }
-};
-
+// ---- Four Table-2 elements on sinusoidal motions (support/circuit_cases.hpp) ----
 TEST(ElementSumsQuasiStatic, VoltageApproachesRTimesSourceCurrentLinearlyInR) {
   // MODEL.md §2: V ~ R sum sigma_i w_i x_i' for R sum C_i short against the motion; the
   // deviation falls tenfold per decade of R and is below 1e-5 at 1 kOhm (as test_circuit).
