@@ -1,8 +1,9 @@
 // What distributing an ensemble costs (issue 13; README "Ensembles", docs/cluster.md).
 // Not a micro-benchmark: prints medians and ratios itself.
-//   1. the cost of a realisation and its spread: the quick identifiability sweep
-//      (studies/ensembles/identifiability_quick.toml), 4 realisations of each of its 12
-//      grid points on one thread (its costs differ by ~10x between 1 and 32 asperities);
+//   1. the cost of a realisation and its spread, on one thread: the quick identifiability
+//      sweep (studies/ensembles/identifiability_quick.toml, 4 realisations of each of its 12
+//      grid points; costs differ by ~10x between 1 and 32 asperities) and the count study
+//      (identifiability_vs_count.toml, 1 of each of its 28 points, 1 to 64 asperities);
 //   2. the serial work of rank 0 per record in an MPI run (decode the frame a worker sent,
 //      append it durably to the journal: one write and one fsync), on synthetic records of
 //      the measured mean size: 10^5 decodes in memory, 2000 journal appends (scaled);
@@ -51,15 +52,15 @@ struct Cost {
   double mean_asperities = 0;
 };
 
-Cost measure_realisations() {
-  const stengmc::Study base = stengmc::read_study(std::string(STENGMC_SOURCE_DIR) +
-                                                      "/studies/ensembles/identifiability_quick.toml",
+//! `per_point` realisations of every grid point of a shipped study, one thread.
+Cost measure_realisations(const std::string& study, std::uint64_t per_point) {
+  const stengmc::Study base = stengmc::read_study(std::string(STENGMC_SOURCE_DIR) + "/studies/ensembles/" + study,
                                                   std::nullopt);
   const std::vector<stengmc::GridPoint> grid = stengmc::prepare_grid(base);
   std::vector<double> times;
   double asperities = 0;
   for (const stengmc::GridPoint& point : grid)
-    for (std::uint64_t r = 0; r < 4; ++r) {
+    for (std::uint64_t r = 0; r < per_point; ++r) {
       const auto start = Clock::now();
       const stengmc::RealisationRecord record = stengmc::run_realisation(point.study, r, false);
       times.push_back(seconds_since(start));
@@ -96,11 +97,15 @@ int main() {
   bench::ScratchDir scratch("distribution");
   std::printf("stengmc distribution benchmark (one thread; medians where repeated)\n\n");
 
-  const Cost cost = measure_realisations();
-  std::printf("1. realisation cost, identifiability_quick (48 realisations over its 12 grid points, 1 thread):\n"
-              "   mean %.1f ms, median %.1f ms, coefficient of variation %.2f, slowest / fastest %.1f; mean %.1f "
-              "asperities per record\n\n",
-              1e3 * cost.mean_s, 1e3 * cost.median_s, cost.cv, cost.max_over_min, cost.mean_asperities);
+  const Cost cost = measure_realisations("identifiability_quick.toml", 4);
+  const Cost count_cost = measure_realisations("identifiability_vs_count.toml", 1);
+  for (const auto& [name, c] : {std::pair{"identifiability_quick (4 of each of its 12 grid points)", cost},
+                                std::pair{"identifiability_vs_count (1 of each of its 28 grid points)", count_cost}})
+    std::printf("1. realisation cost, %s, 1 thread:\n"
+                "   mean %.1f ms, median %.1f ms, coefficient of variation %.2f, slowest / fastest %.1f; mean %.1f "
+                "asperities per record\n",
+                name, 1e3 * c.mean_s, 1e3 * c.median_s, c.cv, c.max_over_min, c.mean_asperities);
+  std::printf("\n");
 
   const auto asperities = static_cast<std::size_t>(std::lround(std::max(1.0, cost.mean_asperities)));
   constexpr std::size_t RECORDS = 100'000;
@@ -149,10 +154,12 @@ int main() {
               "parallel: %.2f us\n",
               asperities, frames.front().size(), 1e6 * decode_s, 1e6 * append_single_s, 1e6 * append_group_s, GROUP,
               APPENDS, 1e6 * encode_s);
-  std::printf("   gather of 10^5 records on rank 0 (decode + grouped journal): %.2f s against %.0f s of compute: %.3f %% "
-              "(required < 2 %%); with one fsync per record: %.3f %%\n\n",
-              gather_s * RECORDS, cost.mean_s * RECORDS, 100.0 * gather_s / cost.mean_s,
-              100.0 * (decode_s + append_single_s) / cost.mean_s);
+  for (const auto& [name, c] : {std::pair{"identifiability_quick", cost}, std::pair{"identifiability_vs_count", count_cost}})
+    std::printf("   gather of 10^5 records on rank 0 (decode + grouped journal): %.2f s against %.0f s of %s compute: "
+                "%.3f %% (required < 2 %%); with one fsync per record: %.3f %%\n",
+                gather_s * RECORDS, c.mean_s * RECORDS, name, 100.0 * gather_s / c.mean_s,
+                100.0 * (decode_s + append_single_s) / c.mean_s);
+  std::printf("\n");
 
   // 3. Merging shard files: 8 files of 12 500 records, written and read back.
   constexpr int SHARDS = 8;
@@ -171,17 +178,19 @@ int main() {
               "them back in merge %.2f s: %.3f %% of the compute\n\n",
               SHARDS, write_shards_s, read_shards_s, 100.0 * read_shards_s / (cost.mean_s * RECORDS));
 
-  std::printf("4. scaling model (README, \"Ensembles\"): efficiency = compute / (ranks x wall), c = %.1f ms, cv = "
-              "%.2f, g = %.1f us per record on rank 0\n",
-              1e3 * cost.mean_s, cost.cv, 1e6 * gather_s);
-  std::printf("   %-40s %10s %10s %10s   rank 0 saturates at\n", "10^5 realisations as", "64 ranks", "1024", "16384");
-  const double saturation = cost.mean_s / gather_s;
-  for (const auto& [label, points, per_point] :
-       {std::tuple{"one ensemble of 10^5", 1.0, 1e5}, std::tuple{"1000 grid points x 100", 1000.0, 100.0},
-        std::tuple{"100 grid points x 1000", 100.0, 1000.0}})
-    std::printf("   %-40s %9.1f%% %9.1f%% %9.1f%%   %.0f ranks\n", label, 100 * efficiency(64, points, per_point, cost, gather_s),
-                100 * efficiency(1024, points, per_point, cost, gather_s),
-                100 * efficiency(16384, points, per_point, cost, gather_s), saturation);
+  std::printf("4. scaling model (README, \"Ensembles\"): efficiency = compute / (ranks x wall), g = %.1f us per "
+              "record on rank 0 (grouped journal)\n",
+              1e6 * gather_s);
+  for (const auto& [name, c] : {std::pair{"identifiability_quick", cost}, std::pair{"identifiability_vs_count", count_cost}}) {
+    std::printf("   %s realisations (c = %.1f ms, cv = %.2f): rank 0 saturates at c / g = %.0f ranks\n", name,
+                1e3 * c.mean_s, c.cv, c.mean_s / gather_s);
+    std::printf("   %-32s %10s %10s %10s\n", "10^5 realisations as", "64 ranks", "1024", "16384");
+    for (const auto& [label, points, per_point] :
+         {std::tuple{"one ensemble of 10^5", 1.0, 1e5}, std::tuple{"100 grid points x 1000", 100.0, 1000.0},
+          std::tuple{"1000 grid points x 100", 1000.0, 100.0}})
+      std::printf("   %-32s %9.1f%% %9.1f%% %9.1f%%\n", label, 100 * efficiency(64, points, per_point, c, gather_s),
+                  100 * efficiency(1024, points, per_point, c, gather_s), 100 * efficiency(16384, points, per_point, c, gather_s));
+  }
   std::printf("(checksum %zu)\n", checksum);
   return 0;
 }

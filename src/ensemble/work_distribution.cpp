@@ -102,10 +102,11 @@ struct WorkDistributor::State {
   std::size_t remaining = 0;                 //!< ids of the batch not delivered yet
   std::exception_ptr failure;
   std::vector<std::pair<int, int>> waiting;  //!< remote (rank, thread slot) asking for work
+  std::vector<RealisationRecord> local;      //!< records of rank 0's own threads, to deliver
   int remote_threads = 0;
   bool finishing = false, stop = false;
 
-  std::mutex deliver_mutex;                  //!< held while a remote record is delivered
+  std::mutex deliver_mutex;                  //!< held while records are delivered
   const DeliverRecords* deliver = nullptr;    //!< the current batch's, null between batches
   std::thread service;
 
@@ -197,7 +198,12 @@ void WorkDistributor::State::serve() {
       handle(bytes, from, arrived);
       ++received;
     }
-    if (received == 0) {
+    {
+      const std::lock_guard lock(mutex);
+      for (RealisationRecord& r : local) arrived.push_back(std::move(r));
+      local.clear();
+    }
+    if (arrived.empty() && received == 0) {
       std::this_thread::sleep_for(POLL_INTERVAL);
       continue;
     }
@@ -255,12 +261,10 @@ void WorkDistributor::run(const std::vector<std::uint64_t>& ids, int threads, co
       s.queue.pop_front();
     }
     try {
-      std::vector<RealisationRecord> one;
-      one.push_back(compute(id));
-      deliver(std::move(one));
+      // Journalled by the service thread with whatever else has arrived (one fsync).
+      RealisationRecord record = compute(id);
       const std::lock_guard lock(s.mutex);
-      --s.remaining;
-      s.changed.notify_all();
+      s.local.push_back(std::move(record));
     } catch (...) {
       const std::lock_guard lock(s.mutex);
       if (!s.failure) s.failure = std::current_exception();

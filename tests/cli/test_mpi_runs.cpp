@@ -46,15 +46,7 @@ std::string mpirun_line(int ranks) {
 
 //! `mpirun -np ranks stengmc arguments`, with output captured.
 testing::CliResult run_mpi(int ranks, const std::string& arguments, const ScratchDir& scratch) {
-  const std::string log = scratch.file("mpi.log");
-  const int status = std::system((mpirun_line(ranks) + STENGMC_BINARY + " " + arguments + " > " + log + " 2>&1").c_str());
-  testing::CliResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  result.output = text.str();
-  return result;
+  return testing::run_command(mpirun_line(ranks) + STENGMC_BINARY + " " + arguments, scratch);
 }
 
 void expect_every_layout_equals_one_process(const std::string& text, const std::string& name) {
