@@ -4,7 +4,7 @@
     golden_digest.py check      --binary build/src/stengmc [--work-dir DIR]
     golden_digest.py regenerate --binary build/src/stengmc [--work-dir DIR]
     golden_digest.py digest FILE.h5 [FILE.h5 ...]
-    golden_digest.py same A.h5 B.h5
+    golden_digest.py same A.h5 B.h5 [--ignore PATH[@ATTRIBUTE] ...]
 
 `check` runs every case below with the given binary and compares the digest of each
 output file with tests/regression/golden_digests.txt; it exits 1 on any difference and
@@ -269,11 +269,14 @@ def main():
     p.add_argument("files", nargs="+")
     p = sub.add_parser("same")
     p.add_argument("files", nargs=2)
+    p.add_argument("--ignore", action="append", default=[],
+                   help="an object not to compare, as path or path@attribute (e.g. a dataset of timings)")
     args = parser.parse_args()
 
     if args.command == "same":
         first, second = args.files
-        differences = compare({"file": file_lines(first, True)}, {"file": file_lines(second, True)})
+        kept = lambda lines: [line for line in lines if key_of(line) not in args.ignore]  # noqa: E731
+        differences = compare({"file": kept(file_lines(first, True))}, {"file": kept(file_lines(second, True))})
         if not differences:
             return 0
         print(f"{first} and {second} differ:")

@@ -30,10 +30,12 @@ namespace {
 //! times over the same output.
 bool refused_under_mpi(int argc, char** argv) {
   const stengmc::ProcessWorld world = stengmc::process_world();
-  if (!world.distributed() || argc < 2 || std::string_view(argv[1]) == "run" || argv[1][0] == '-') return false;
+  if (!world.distributed() || argc < 2 || argv[1][0] == '-') return false;
+  if (const std::string_view command = argv[1]; command == "run" || command == "calibrate") return false;
   if (world.root())
     std::fprintf(stderr, "stengmc: input error: `stengmc %s` under an MPI launch of %d processes: only `stengmc run` of "
-                         "an [ensemble] study is distributed over processes; run this command without mpirun\n",
+                         "an [ensemble] study and `stengmc calibrate` are distributed over processes; run this command "
+                         "without mpirun\n",
                  argv[1], world.size);
   return true;
 }

@@ -2,7 +2,8 @@
 // writes the file a single process writes, by golden_digest.py's comparison (every dataset
 // and attribute but the creation time), for P = 1, 2, 3 (3 oversubscribes this 2-core
 // machine) and 1 or 2 threads per rank, for an ensemble and a sweep; a job SIGKILLed
-// mid-way resumes, with another number of ranks, to that same file. Built only with MPI.
+// mid-way resumes, with another number of ranks, to that same file; a calibration bank
+// on 2 and 3 ranks is the one-process bank but for its timings. Built only with MPI.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -21,6 +22,7 @@
 
 #include "support/cli_runner.hpp"
 #include "support/distributed_runs.hpp"
+#include "support/inverse_device.hpp"
 
 extern char** environ;
 
@@ -179,6 +181,31 @@ TEST(Mpi, AJobKilledMidWayResumesWithAnotherNumberOfRanksToTheOneProcessFile) {
   }
 }
 
+TEST(Mpi, ACalibrationBankIsTheOneProcessBankOnTwoAndThreeRanks) {
+  // The small known device of test_invert_command (50 records of 20 us, 1-3 asperities):
+  // every dataset and attribute of the bank but the wall and CPU times it records.
+  ScratchDir scratch("mpi-calibrate");
+  const std::string device = scratch.write("device.toml", testing::known_device_study("20e-6", R"(count = [1, 3]
+median_n_per_m = [60, 90]
+sigma_log = [0.1, 0.2]
+snr_db = [25, 35]
+calibration_records = 50
+seed = 5
+)"));
+  const std::string reference = scratch.file("one_process.h5");
+  const auto single = run_cli("calibrate " + device + " -j 1 -o " + reference, scratch);
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  for (int ranks : {2, 3}) {
+    const std::string out = scratch.file("bank_p" + std::to_string(ranks) + ".h5");
+    const auto bank = run_mpi(ranks, "calibrate " + device + " -j 1 -o " + out, scratch);
+    ASSERT_EQ(bank.exit_code, 0) << ranks << " ranks: " << bank.output;
+    // Timings: the estimator's time per record, the bank's wall time and thread count.
+    const std::string differences =
+        testing::file_differences(reference, out, scratch, {"/records/seconds", "/@seconds", "/@threads"});
+    EXPECT_EQ(differences, "") << ranks << " ranks";
+  }
+}
+
 TEST(Mpi, OnlyEnsembleRunsAreDistributedAndBadInputEndsEveryRankWithExitTwo) {
   ScratchDir scratch("mpi-refused");
   const std::string study = scratch.write("study.toml", distributed_study(4));
@@ -186,7 +213,8 @@ TEST(Mpi, OnlyEnsembleRunsAreDistributedAndBadInputEndsEveryRankWithExitTwo) {
   const auto surface = run_mpi(2, "surface " + std::string(STENGMC_SOURCE_DIR) + "/surfaces/lognormal_count.toml -o " +
                                       scratch.file("s.h5"), scratch);
   EXPECT_EQ(surface.exit_code, 2) << surface.output;
-  EXPECT_NE(surface.output.find("only `stengmc run`"), std::string::npos) << surface.output;
+  EXPECT_NE(surface.output.find("only `stengmc run` of an [ensemble] study and `stengmc calibrate`"), std::string::npos)
+      << surface.output;
   EXPECT_FALSE(std::filesystem::exists(scratch.file("s.h5")));
   // Shards and ranks are two ways of splitting one run.
   const auto shard = run_mpi(2, "run " + study + " --shard 0/2 -o " + scratch.file("x.shard"), scratch);

@@ -4,6 +4,7 @@
 // included, except those that record when, where or how fast a file was made).
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "support/cli_runner.hpp"
 
@@ -25,11 +26,14 @@ inline std::string distributed_study(int realisations, const std::string& ensemb
 //! A two-point sweep of the summit count for distributed_study.
 inline const char* TWO_POINT_SWEEP = "[[ensemble.sweep]]\nparameter = \"surface.summits.count\"\nvalues = [2, 5]\n";
 
-//! "" when `a` and `b` agree by golden_digest.py's `same`, else its report.
-inline std::string file_differences(const std::string& a, const std::string& b, const ScratchDir& scratch) {
+//! "" when `a` and `b` agree by golden_digest.py's `same`, else its report. `ignored`:
+//! objects not compared ("/records/seconds", "/@threads").
+inline std::string file_differences(const std::string& a, const std::string& b, const ScratchDir& scratch,
+                                    const std::vector<std::string>& ignored = {}) {
   const std::string log = scratch.file("same.log");
-  const std::string command = "/usr/bin/python3 " + std::string(STENGMC_PYTHON_SCRIPTS) + "/golden_digest.py same " + a +
-                              " " + b + " > " + log + " 2>&1";
+  std::string command = "/usr/bin/python3 " + std::string(STENGMC_PYTHON_SCRIPTS) + "/golden_digest.py same " + a + " " + b;
+  for (const std::string& object : ignored) command += " --ignore " + object;
+  command += " > " + log + " 2>&1";
   const int status = std::system(command.c_str());
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
   std::ifstream in(log);
