@@ -4,11 +4,15 @@
     golden_digest.py check      --binary build/src/stengmc [--work-dir DIR]
     golden_digest.py regenerate --binary build/src/stengmc [--work-dir DIR]
     golden_digest.py digest FILE.h5 [FILE.h5 ...]
+    golden_digest.py same A.h5 B.h5 [--ignore PATH[@ATTRIBUTE] ...]
 
 `check` runs every case below with the given binary and compares the digest of each
 output file with tests/regression/golden_digests.txt; it exits 1 on any difference and
 names what changed. `regenerate` rewrites that file. `digest` prints the lines of
-existing files (to compare two builds by hand).
+existing files (to compare two builds by hand). `same` exits 0 when two files agree in
+every dataset and every attribute, text ones included (the study text, the input paths),
+except the excluded ones below; else it prints the differences and exits 1 (the tests of
+distributed and sharded runs compare them with a single run this way).
 
 What is fingerprinted, per output file:
 - every dataset: dtype, shape and a SHA-256 of its values (little-endian bytes; text
@@ -111,7 +115,7 @@ def dataset_line(path, dataset):
     return line
 
 
-def attribute_lines(path, attributes):
+def attribute_lines(path, attributes, include_text=False):
     lines = []
     for name in sorted(attributes):
         if excluded(name):
@@ -119,6 +123,9 @@ def attribute_lines(path, attributes):
         value = attributes[name]
         array = np.asarray(value)
         if array.dtype.kind not in "biuf":
+            if include_text:  # `same`: the provenance must agree too
+                digest = hashlib.sha256(value_bytes(array, array.dtype)).hexdigest()[:HASH_CHARS]
+                lines.append(f"{path}@{name} text {digest}")
             continue  # text attributes are provenance and labels, not results
         if array.size == 1:
             number = array.ravel()[0]
@@ -130,17 +137,17 @@ def attribute_lines(path, attributes):
     return lines
 
 
-def file_lines(h5_path):
+def file_lines(h5_path, include_text=False):
     """The digest lines of one HDF5 file, sorted by object path."""
     lines = []
     with h5py.File(h5_path, "r") as f:
-        lines += attribute_lines("/", f.attrs)
+        lines += attribute_lines("/", f.attrs, include_text)
 
         def visit(name, obj):
             path = "/" + name
             if isinstance(obj, h5py.Dataset):
                 lines.append(dataset_line(path, obj))
-            lines.extend(attribute_lines(path, obj.attrs))
+            lines.extend(attribute_lines(path, obj.attrs, include_text))
 
         f.visititems(visit)
     return sorted(lines)
@@ -260,7 +267,21 @@ def main():
         p.add_argument("--digests", default=DIGEST_FILE, help="the golden digest file")
     p = sub.add_parser("digest")
     p.add_argument("files", nargs="+")
+    p = sub.add_parser("same")
+    p.add_argument("files", nargs=2)
+    p.add_argument("--ignore", action="append", default=[],
+                   help="an object not to compare, as path or path@attribute (e.g. a dataset of timings)")
     args = parser.parse_args()
+
+    if args.command == "same":
+        first, second = args.files
+        kept = lambda lines: [line for line in lines if key_of(line) not in args.ignore]  # noqa: E731
+        differences = compare({"file": kept(file_lines(first, True))}, {"file": kept(file_lines(second, True))})
+        if not differences:
+            return 0
+        print(f"{first} and {second} differ:")
+        print("\n".join("  " + d for d in differences))
+        return 1
 
     if args.command == "digest":
         for path in args.files:

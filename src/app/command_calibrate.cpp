@@ -6,6 +6,7 @@
 #include "app/inputs.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "ensemble/process_world.hpp"
 #include "inverse/calibration_run.hpp"
 #include "io/calibration_bank_file.hpp"
 
@@ -65,12 +66,18 @@ void run(const CalibrateOptions& options) {
   // Everything the bank would be made from is checked before the long run starts.
   const InverseSetup setup = inverse_setup(study);
   const std::size_t records = calibration.records.value_or(setup.prior.calibration_records);
-  std::printf("stengmc calibrate %s: %zu simulated records of the prior, seed %llu\n", options.study_file.c_str(), records,
-              static_cast<unsigned long long>(setup.prior.seed));
-  std::printf("  prior: %zu-%zu sliding asperities, %s stiffnesses, SNR %g-%g dB; records of %zu samples at %g Hz\n",
-              setup.prior.count_min, setup.prior.count_max, std::string(stiffness_family_name(setup.prior.family)).c_str(),
-              setup.prior.snr_db[0], setup.prior.snr_db[1], setup.grid.samples, setup.grid.sample_rate_hz());
-  if (!options.refit) std::printf("  building the atoms (the forward model on a grid of stiffnesses)...\n");
+  // Under MPI every rank builds the atoms and computes records; rank 0 alone prints and writes.
+  const bool root = process_world().root();
+  if (options.refit && process_world().distributed())
+    throw InputError("--refit fits the maps of an existing bank without simulating: run it without mpirun");
+  if (root) {
+    std::printf("stengmc calibrate %s: %zu simulated records of the prior, seed %llu\n", options.study_file.c_str(), records,
+                static_cast<unsigned long long>(setup.prior.seed));
+    std::printf("  prior: %zu-%zu sliding asperities, %s stiffnesses, SNR %g-%g dB; records of %zu samples at %g Hz\n",
+                setup.prior.count_min, setup.prior.count_max, std::string(stiffness_family_name(setup.prior.family)).c_str(),
+                setup.prior.snr_db[0], setup.prior.snr_db[1], setup.grid.samples, setup.grid.sample_rate_hz());
+    if (!options.refit) std::printf("  building the atoms (the forward model on a grid of stiffnesses)...\n");
+  }
   std::fflush(stdout);
   const std::string journal = out + ".journal";
   CalibrationBank bank;
@@ -85,6 +92,7 @@ void run(const CalibrateOptions& options) {
     std::printf("  refitted the maps on the bank's %zu records (no new simulation)\n", bank.samples.size());
   } else {
     bank = run_calibration(study, journal, calibration);
+    if (bank.worker) return;
   }
   if (const auto folder = std::filesystem::path(out).parent_path(); !folder.empty()) std::filesystem::create_directories(folder);
   write_calibration_bank(out, bank);

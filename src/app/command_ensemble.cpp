@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
+#include "ensemble/process_world.hpp"
+#include "ensemble/shard.hpp"
 #include "ensemble/sweep.hpp"
 #include "io/ensemble_file.hpp"
 
@@ -15,6 +17,8 @@ namespace stengmc::app {
 namespace {
 
 std::string default_output(const Study& study, const EnsembleCommandOptions& options) {
+  if (options.shard)
+    return study.output_file + ".shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
   if (!options.only) return study.output_file;
   // --only writes one realisation: never over the full ensemble's result.
   const std::filesystem::path out(study.output_file);
@@ -63,33 +67,38 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
   return out;
 }
 
+//! What `--shard` cannot be combined with, said before anything runs.
+void check_shard_options(const Study& study, const EnsembleCommandOptions& options, bool figures) {
+  if (!options.shard) return;
+  const std::string shard = "--shard " + options.shard->text();
+  if (process_world().distributed())
+    throw InputError(shard + ": shards and an MPI launch are two ways of splitting one run; use one of them");
+  if (options.only) throw InputError(shard + ": --only runs one realisation; use one or the other");
+  if (figures) throw InputError(shard + ": a shard has no figures; merge the shards, then plot the merged file");
+  if (study.ensemble->target)
+    throw InputError(study.file + ": [ensemble] target_statistic: " + shard +
+                     ": a study that stops at a target cannot run in shards (a slice cannot know where the whole run "
+                     "would stop); run it whole, or over MPI");
+}
+
+void write_shard(const std::string& out, const Study& study, const ShardSpec& shard, const std::vector<GridPoint>& grid) {
+  write_shard_file(out, study, shard, grid);
+  std::size_t run = 0, resumed = 0;
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    run += grid[g].run.records.size();
+    resumed += grid[g].run.resumed;
+    std::filesystem::remove(journal_path(out, g, grid.size()));
+  }
+  std::printf("shard %s: %zu realisations over %zu grid point(s)%s\n", shard.text().c_str(), run, grid.size(),
+              resumed > 0 ? (" (" + std::to_string(resumed) + " resumed from an interrupted run)").c_str() : "");
+  std::printf("wrote %s\nwhen all %llu shards are done: stengmc merge <the %llu shard files> --out <file.h5>\n", out.c_str(),
+              static_cast<unsigned long long>(shard.count), static_cast<unsigned long long>(shard.count));
+}
+
 }  // namespace
 
-void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
-                        const EnsembleCommandOptions& options) {
-  const std::string out = out_option.empty() ? default_output(study, options) : out_option;
-  check_output_path(out, study_inputs(study), output_option(out_option, study));
+void print_ensemble_results(const Study& study, const std::vector<GridPoint>& grid, bool only) {
   const EnsembleSettings& settings = *study.ensemble;
-  if (options.only && *options.only >= settings.realisations)
-    throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +
-                     std::to_string(settings.realisations - 1) + " ([ensemble] realisations = " +
-                     std::to_string(settings.realisations) + ")");
-  std::vector<GridPoint> grid = prepare_grid(study, options.limits);
-  print_header(study, grid.size());
-  if (!study.surface->random_surface() && !study.noise)
-    std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
-                "is the same run and the intervals have zero width\n");
-  std::fflush(stdout);
-  for (std::size_t g = 0; g < grid.size(); ++g) {
-    EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
-                                .show_progress = true, .limits = options.limits};
-    if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
-    grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
-    grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);
-  }
-  write_ensemble_file(out, study, grid);
-  if (!options.only)
-    for (std::size_t g = 0; g < grid.size(); ++g) std::filesystem::remove(journal_path(out, g, grid.size()));
   if (grid.size() == 1) {
     std::printf("%s", format_ensemble_summary(grid[0].summary, grid[0].run).c_str());
   } else {
@@ -100,7 +109,7 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
       std::printf("%zu invalid realisations in all, kept out of the statistics (which and why: /realisations/failure)\n",
                   invalid);
   }
-  if (settings.target && !options.only)
+  if (settings.target && !only)
     for (std::size_t g = 0; g < grid.size(); ++g) {
       const EnsembleRun& run = grid[g].run;
       std::printf("%starget: 95 %% CI half-width of mean %s = %.4g (goal %.4g): %s\n",
@@ -110,6 +119,50 @@ void run_ensemble_study(const Study& study, const std::string& out_option, bool 
                   run.target_met ? (run.stopped_at_target ? "met, stopped early" : "met at the cap")
                                  : "NOT met: the cap of realisations came first");
     }
+}
+
+void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
+                        const EnsembleCommandOptions& options) {
+  const std::string out = out_option.empty() ? default_output(study, options) : out_option;
+  check_output_path(out, study_inputs(study), output_option(out_option, study));
+  const EnsembleSettings& settings = *study.ensemble;
+  if (options.only && *options.only >= settings.realisations)
+    throw InputError("--only " + std::to_string(*options.only) + ": the study has realisations 0.." +
+                     std::to_string(settings.realisations - 1) + " ([ensemble] realisations = " +
+                     std::to_string(settings.realisations) + ")");
+  check_shard_options(study, options, figures);
+  // In an MPI run every rank reads and prepares the same grid; rank 0 alone prints,
+  // journals and writes (the other ranks compute what it hands out).
+  const bool root = process_world().root();
+  std::vector<GridPoint> grid = prepare_grid(study, options.limits);
+  if (root) {
+    print_header(study, grid.size());
+    if (options.shard) std::printf("  shard %s: realisations r with r mod %llu = %llu\n", options.shard->text().c_str(),
+                                   static_cast<unsigned long long>(options.shard->count),
+                                   static_cast<unsigned long long>(options.shard->index));
+    if (process_world().distributed())
+      std::printf("  %d MPI processes\n", process_world().size);
+    if (!study.surface->random_surface() && !study.noise)
+      std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
+                  "is the same run and the intervals have zero width\n");
+  }
+  std::fflush(stdout);
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
+                                .show_progress = root, .limits = options.limits, .shard = options.shard};
+    if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
+    grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
+    if (root && !options.shard) grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);
+  }
+  if (!root) return;
+  if (options.shard) {
+    write_shard(out, study, *options.shard, grid);
+    return;
+  }
+  write_ensemble_file(out, study, grid);
+  if (!options.only)
+    for (std::size_t g = 0; g < grid.size(); ++g) std::filesystem::remove(journal_path(out, g, grid.size()));
+  print_ensemble_results(study, grid, options.only.has_value());
   std::printf("wrote %s\n", out.c_str());
   if (figures && render_figures(out) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");

@@ -6,6 +6,8 @@
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
 #include "core/error.hpp"
+#include "ensemble/process_world.hpp"
+#include "ensemble/shard.hpp"
 #include "io/run_file.hpp"
 #include "io/study.hpp"
 #include "pipeline/run_study.hpp"
@@ -23,6 +25,7 @@ struct RunOptions {
   bool realisation_given = false;
   bool figures = false;
   EnsembleCommandOptions ensemble;
+  std::string shard;  //!< --shard i/n as given
   LimitOptions limits;
 };
 
@@ -53,13 +56,24 @@ void run_single(const RunOptions& options) {
 
 void run(const RunOptions& options) {
   // An [ensemble] study runs as an ensemble unless one realisation is asked for.
+  const std::optional<ShardSpec> shard =
+      options.shard.empty() ? std::nullopt : std::optional<ShardSpec>(parse_shard_spec(options.shard));
   const Study base = read_study(options.study_file, std::nullopt);
   if (base.ensemble && !options.realisation_given) {
     EnsembleCommandOptions ensemble = options.ensemble;
     ensemble.limits = options.limits.limits();
+    ensemble.shard = shard;
     run_ensemble_study(base, options.out, options.figures, ensemble);
     return;
   }
+  if (process_world().distributed())
+    throw InputError("an MPI launch distributes the realisations of an [ensemble] study; " +
+                     (base.ensemble ? std::string("--realisation runs one realisation: run it without mpirun")
+                                    : options.study_file + " has no [ensemble] table: run it without mpirun"));
+  if (shard)
+    throw InputError(base.ensemble ? std::string("--shard splits an ensemble run; --realisation runs one realisation: use "
+                                                 "one or the other")
+                                   : options.study_file + " has no [ensemble] table: --shard applies to ensembles only");
   if (options.ensemble.only || options.ensemble.restart)
     throw InputError(base.ensemble ? std::string("--realisation runs one realisation as an ordinary run; --only and "
                                                  "--restart belong to the ensemble run: use one or the other")
@@ -92,6 +106,10 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("--restart", options->ensemble.restart,
                     "Ensemble: discard the journal of an interrupted run instead of resuming it");
+  command->add_option("--shard", options->shard,
+                      "Ensemble: run only slice i of n (realisations r with r mod n = i, every grid point) into a "
+                      "shard file (default <output>.shard<i>of<n>); `stengmc merge` makes the output of all n")
+      ->type_name("I/N");
   add_limit_options(command, options->limits);
   command->callback([options, realisation] {
     options->realisation_given = realisation->count() > 0;

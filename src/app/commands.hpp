@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "ensemble/shard_spec.hpp"
+#include "ensemble/sweep.hpp"
 #include "io/study.hpp"
 #include "pipeline/work_estimate.hpp"
 
@@ -17,6 +19,7 @@ void add_spectrum_command(CLI::App& app);
 void add_surface_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_invert_command(CLI::App& app);
+void add_merge_command(CLI::App& app);
 
 //! What `run` passes on to an ensemble.
 struct EnsembleCommandOptions {
@@ -24,11 +27,15 @@ struct EnsembleCommandOptions {
   std::optional<std::uint64_t> only;
   bool restart = false;
   WorkLimits limits;
+  std::optional<ShardSpec> shard;  //!< --shard i/n: run one slice into a shard file
 };
 
 //! Runs an [ensemble] study: realisations in parallel, journal, statistics, output file.
 void run_ensemble_study(const stengmc::Study& study, const std::string& out, bool figures,
                         const EnsembleCommandOptions& options);
+
+//! The summary table (one point) or grid table (a sweep) and the target lines of a run grid.
+void print_ensemble_results(const stengmc::Study& study, const std::vector<GridPoint>& grid, bool only);
 
 //! Renders the figures of an output file with scripts/plot_run.py; returns the PNG paths printed.
 int render_figures(const std::string& h5_path);

@@ -4,22 +4,47 @@
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string_view>
 
 #include "app/commands.hpp"
 #include "core/build_info.hpp"
 #include "core/error.hpp"
+#include "ensemble/process_world.hpp"
 
 namespace {
 
-int fail(const char* kind, const char* what, int code) {
+[[nodiscard]] int fail(const char* kind, const char* what, int code) {
   std::fflush(stdout);  // what was printed so far stays ahead of the error in a combined log
-  std::fprintf(stderr, "stengmc: %s: %s\n", kind, what);
-  return code;
+  const stengmc::ProcessWorld world = stengmc::process_world();
+  if (!world.distributed()) {
+    std::fprintf(stderr, "stengmc: %s: %s\n", kind, what);
+    return code;
+  }
+  // In an MPI run one rank's error ends the job at once: the others would wait for it forever.
+  if (world.root()) std::fprintf(stderr, "stengmc: %s: %s\n", kind, what);
+  else std::fprintf(stderr, "stengmc (rank %d): %s: %s\n", world.rank, kind, what);
+  stengmc::abort_every_process(code);
+}
+
+//! In an MPI launch only `run` of an ensemble is distributed; another command would run P
+//! times over the same output.
+bool refused_under_mpi(int argc, char** argv) {
+  const stengmc::ProcessWorld world = stengmc::process_world();
+  if (!world.distributed() || argc < 2 || argv[1][0] == '-') return false;
+  if (const std::string_view command = argv[1]; command == "run" || command == "calibrate") return false;
+  if (world.root())
+    std::fprintf(stderr, "stengmc: input error: `stengmc %s` under an MPI launch of %d processes: only `stengmc run` of "
+                         "an [ensemble] study and `stengmc calibrate` are distributed over processes; run this command "
+                         "without mpirun\n",
+                 argv[1], world.size);
+  return true;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
+  if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"
                "Every quantity is in SI units. Model: MODEL.md; file layouts: README.md.\n"
                "Exit codes: 0 ok, 2 bad input, 3 model out of its validity domain, 1 other failure."};
@@ -33,6 +58,7 @@ int main(int argc, char** argv) {
   stengmc::app::add_plot_command(app);
   stengmc::app::add_calibrate_command(app);
   stengmc::app::add_invert_command(app);
+  stengmc::app::add_merge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

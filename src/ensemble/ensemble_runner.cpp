@@ -17,7 +17,9 @@
 #include "core/progress.hpp"
 #include "core/random_stream.hpp"
 #include "ensemble/journal.hpp"
+#include "ensemble/process_world.hpp"
 #include "ensemble/run_realisation.hpp"
+#include "ensemble/work_distribution.hpp"
 #include "stats/ensemble_statistics.hpp"
 
 namespace stengmc {
@@ -71,11 +73,17 @@ std::optional<double> target_half_width(const Study& study, const std::map<std::
   return ci.half_width();
 }
 
-//! Runs `ids` in parallel; records go to the journal (if any) and `done`.
-void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
-               Journal* journal, std::map<std::uint64_t, RealisationRecord>& done, Progress* progress,
-               RunningStatus& status, const RealisationHook& hook) {
-  std::vector<RealisationRecord> results(ids.size());
+//! One realisation's record, with the caller's hook applied.
+RealisationRecord compute_record(const Study& study, std::uint64_t id, const WorkLimits& limits,
+                                 const RealisationHook& hook) {
+  RealisationRecord record = run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id), limits);
+  if (hook.apply) hook.apply(record);
+  return record;
+}
+
+//! Runs `ids` on `threads` threads of this process.
+void run_locally(const std::vector<std::uint64_t>& ids, int threads, const ComputeRecord& compute,
+                 const DeliverRecords& deliver) {
   std::mutex mutex;
   std::exception_ptr failure;
   const auto count = static_cast<std::int64_t>(ids.size());
@@ -87,24 +95,40 @@ void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int th
       if (failure) continue;
     }
     try {
-      const std::uint64_t id = ids[static_cast<std::size_t>(k)];
-      RealisationRecord record =
-          run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id), limits);
-      if (hook.apply) hook.apply(record);
-      if (journal) journal->append(record);
-      std::lock_guard lock(mutex);
-      status.add(record);
-      if (progress) {
-        progress->set_status(status.line());
-        progress->advance();
-      }
-      results[static_cast<std::size_t>(k)] = std::move(record);
+      std::vector<RealisationRecord> one;
+      one.push_back(compute(ids[static_cast<std::size_t>(k)]));
+      deliver(std::move(one));
     } catch (...) {
       std::lock_guard lock(mutex);
       if (!failure) failure = std::current_exception();
     }
   }
   if (failure) std::rethrow_exception(failure);
+}
+
+//! Runs `ids` in parallel (over the ranks with `distributor`); records go to the journal
+//! (if any) and `done`.
+void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
+               Journal* journal, std::map<std::uint64_t, RealisationRecord>& done, Progress* progress,
+               RunningStatus& status, const RealisationHook& hook, WorkDistributor* distributor) {
+  std::vector<RealisationRecord> results;
+  results.reserve(ids.size());
+  std::mutex mutex;
+  const ComputeRecord compute = [&](std::uint64_t id) { return compute_record(study, id, limits, hook); };
+  const DeliverRecords deliver = [&](std::vector<RealisationRecord>&& records) {
+    if (journal) journal->append(records);
+    std::lock_guard lock(mutex);
+    for (RealisationRecord& record : records) {
+      status.add(record);
+      if (progress) {
+        progress->set_status(status.line());
+        progress->advance();
+      }
+      results.push_back(std::move(record));
+    }
+  };
+  if (distributor) distributor->run(ids, threads, compute, deliver);
+  else run_locally(ids, threads, compute, deliver);
   for (RealisationRecord& r : results) {
     const std::uint64_t id = r.realisation;
     done.emplace(id, std::move(r));
@@ -141,8 +165,25 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
   std::map<std::uint64_t, RealisationRecord> done;
   RunningStatus status;
 
+  if (settings.target && options.shard)
+    throw InputError(study.file + ": [ensemble] target_statistic: a study that stops at a target cannot run in "
+                     "shards (a slice cannot know where the whole run would stop); run it whole, or over MPI");
+  const ProcessWorld world = process_world();
+  std::optional<WorkDistributor> distributor;
+  if (world.distributed() && !options.only) {
+    if (!world.root()) {
+      serve_realisations(run.threads, [&](std::uint64_t id) { return compute_record(study, id, options.limits, hook); });
+      run.worker = true;
+      return run;
+    }
+    distributor.emplace();
+  }
+  const auto in_slice = [&](std::uint64_t id) { return !options.shard || options.shard->contains(id); };
+  std::uint64_t to_run = 0;
+  for (std::uint64_t id = 0; id < settings.realisations; ++id) to_run += in_slice(id) ? 1 : 0;
+
   if (options.only) {
-    run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook);
+    run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook, nullptr);
   } else {
     if (options.restart) std::filesystem::remove(journal_path);
     const std::uint64_t identity =
@@ -151,7 +192,8 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
                                                  "), study " + study.file});
     // A realisation refused by the work limits is run again: this run's limits may differ.
     for (const RealisationRecord& r : journal.recovered())
-      if (r.realisation < settings.realisations && r.failure.rfind(WORK_LIMIT_FAILURE, 0) != 0)
+      if (r.realisation < settings.realisations && in_slice(r.realisation) &&
+          r.failure.rfind(WORK_LIMIT_FAILURE, 0) != 0)
         done.emplace(r.realisation, r);
     run.resumed = done.size();
     for (const auto& [id, r] : done) status.add(r);
@@ -159,7 +201,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
     if (options.show_progress) {
       // Only what is left: counting resumed realisations as done now would make the ETA
       // optimistic.
-      progress.emplace(options.progress_label, settings.realisations - done.size());
+      progress.emplace(options.progress_label, to_run - done.size());
     }
     // Without a target, one batch of everything balances the threads best.
     const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;
@@ -167,8 +209,9 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
       const std::uint64_t end = std::min(settings.realisations, first + batch);
       std::vector<std::uint64_t> ids;
       for (std::uint64_t id = first; id < end; ++id)
-        if (!done.count(id)) ids.push_back(id);
-      run_batch(study, ids, run.threads, options.limits, &journal, done, progress ? &*progress : nullptr, status, hook);
+        if (!done.count(id) && in_slice(id)) ids.push_back(id);
+      run_batch(study, ids, run.threads, options.limits, &journal, done, progress ? &*progress : nullptr, status, hook,
+                distributor ? &*distributor : nullptr);
       const auto width = settings.target ? target_half_width(study, done, end) : std::nullopt;
       if (width && *width <= settings.target_half_width && end < settings.realisations) {
         run.stopped_at_target = true;
@@ -177,6 +220,7 @@ EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, co
         break;
       }
     }
+    if (distributor) distributor->finish();
   }
   if (settings.target && !options.only) {
     const auto width = target_half_width(study, done, settings.realisations);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ensemble/realisation_record.hpp"
+#include "ensemble/shard_spec.hpp"
 #include "io/study.hpp"
 #include "pipeline/work_estimate.hpp"
 
@@ -21,6 +22,9 @@ struct EnsembleOptions {
   bool restart = false;                //!< discard an existing journal instead of resuming it
   bool show_progress = true;           //!< progress bar with ETA and running statistics
   WorkLimits limits;                   //!< a realisation over them is recorded invalid (run_realisation)
+  //! Run only this slice of the realisations (and keep only its records from a journal);
+  //! not with a target (a slice cannot see when the whole would have stopped).
+  std::optional<ShardSpec> shard{};
 };
 
 //! A caller's own reduction of every realisation, run in the worker thread as each record
@@ -45,6 +49,9 @@ struct EnsembleRun {
   double seconds = 0.0;                    //!< wall time of this invocation [s]
   int threads = 1;                         //!< threads used
   std::optional<std::uint64_t> only;       //!< the one realisation run (--only), if so
+  //! In a distributed run (MPI), this rank only computed realisations for rank 0: it holds
+  //! no records and writes nothing.
+  bool worker = false;
 };
 
 //! Everything that determines an ensemble's results, hashed: the study and surface texts,
@@ -60,6 +67,11 @@ inline constexpr std::size_t MIN_REALISATIONS_FOR_TARGET = 30;
 //! the caller writes the output and then removes the journal. Realisations are processed
 //! in batches of [ensemble] batch ids when a target is set, so the stopping point is the
 //! same for any number of threads.
+//!
+//! In a distributed run (ensemble/process_world.hpp) every rank calls this for the same
+//! study: rank 0 journals, hands the realisations out (ensemble/work_distribution.hpp) and
+//! returns every record as a single process would; the other ranks return a run marked
+//! `worker`, without records.
 EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options,
                          const RealisationHook& hook = {});
 

@@ -262,7 +262,93 @@ std::optional<std::uint64_t> next_frame(std::string_view body, std::uint64_t fro
   return std::nullopt;
 }
 
+//! The header: magic, format version, study hash, description.
+std::string encode_header(const JournalIdentity& identity) {
+  Encoder header;
+  header.bytes().append(MAGIC);
+  header.u32(FORMAT_VERSION);
+  header.u64(identity.study_hash);
+  header.text(identity.description);
+  return header.bytes();
+}
+
+struct Header {
+  std::uint64_t study_hash = 0;
+  std::string description;
+  std::uint64_t body_start = 0;  //!< offset of the first record [bytes]
+};
+
+//! The header at the start of `file` (the whole file). It was complete before the file got
+//! its name, so anything wrong with it is not a torn write: refuse rather than overwrite
+//! what may be someone else's file.
+Header parse_header(std::string_view file, const std::string& path) {
+  const std::uint64_t fixed = MAGIC.size() + 4 + 8 + 4;
+  if (file.size() < MAGIC.size() || file.substr(0, MAGIC.size()) != MAGIC)
+    throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) +
+                     "); refusing to overwrite it. " + how_to_start_afresh(path));
+  if (file.size() < fixed) throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+  const auto version = little_endian(file.substr(MAGIC.size(), 4));
+  Header header;
+  header.study_hash = little_endian(file.substr(MAGIC.size() + 4, 8));
+  const auto description_size = little_endian(file.substr(MAGIC.size() + 12, 4));
+  if (version != FORMAT_VERSION)
+    throw InputError(path + ": journal format version " + std::to_string(version) + ", this program reads version " +
+                     std::to_string(FORMAT_VERSION) + ". " + how_to_start_afresh(path));
+  if (file.size() - fixed < description_size)
+    throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+  header.description.assign(file.substr(fixed, description_size));
+  header.body_start = fixed + description_size;
+  return header;
+}
+
 }  // namespace
+
+std::string encode_record_frame(const RealisationRecord& record, const std::string& path) {
+  return encode_frame(record, path);
+}
+
+RealisationRecord decode_record_frame(std::string_view frame, const std::string& source) {
+  if (!frame_at(frame, 0) || frame.size() != LENGTH_BYTES + little_endian(frame.substr(0, LENGTH_BYTES)) + CHECKSUM_BYTES)
+    throw InputError(source + ": a record's checksum does not hold (damaged in transit or on disk)");
+  return decode_payload(frame.substr(LENGTH_BYTES, frame.size() - LENGTH_BYTES - CHECKSUM_BYTES), source, 0);
+}
+
+JournalContents read_journal_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path + ": cannot open: " + system_message(errno));
+  std::string file;
+  try {
+    struct stat status {};
+    if (::fstat(fd, &status) != 0) throw_system(path, "cannot read", errno);
+    file = read_at(fd, 0, static_cast<std::uint64_t>(status.st_size), path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+  Header header = parse_header(file, path);
+  JournalContents contents{header.study_hash, std::move(header.description), {}};
+  const std::string_view body = std::string_view(file).substr(header.body_start);
+  for (std::uint64_t offset = 0; offset < body.size();) {
+    if (!frame_at(body, offset))
+      throw InputError(path + ": damaged at byte " + std::to_string(header.body_start + offset) +
+                       " (a record whose checksum does not hold): the file cannot be trusted; make it again");
+    const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
+    contents.records.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path, contents.records.size()));
+    offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
+  }
+  return contents;
+}
+
+void write_journal_file(const std::string& path, const JournalIdentity& identity,
+                        const std::vector<RealisationRecord>& records) {
+  std::string bytes = encode_header(identity);
+  for (const RealisationRecord& r : records) bytes += encode_frame(r, path);
+  TemporaryFile temporary(path);
+  write_file_durably(temporary.path(), bytes, path, "the file");
+  temporary.commit();
+  sync_directory_of(path);
+}
 
 std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis) {
   std::uint64_t hash = basis;
@@ -305,11 +391,7 @@ Journal::~Journal() {
 void Journal::create(const JournalIdentity& identity) {
   if (identity.description.size() > MAX_PAYLOAD_BYTES)
     throw Error(path_ + ": the journal description is longer than 1 GiB");
-  Encoder header;
-  header.bytes().append(MAGIC);
-  header.u32(FORMAT_VERSION);
-  header.u64(identity.study_hash);
-  header.text(identity.description);
+  const std::string header = encode_header(identity);
 
   // Written and synced under a temporary name, then linked into place: the journal appears
   // with its whole header or not at all. link() (unlike rename) never replaces a journal
@@ -317,7 +399,7 @@ void Journal::create(const JournalIdentity& identity) {
   // The temporary is removed however this ends, also by a SIGTERM, and a stale one of a
   // killed run by the next (core/temporary_file.hpp).
   const TemporaryFile temporary(path_);
-  write_file_durably(temporary.path(), header.bytes(), path_, "the journal header");
+  write_file_durably(temporary.path(), header, path_, "the journal header");
   if (::link(temporary.path().c_str(), path_.c_str()) != 0 && errno != EEXIST &&
       ::rename(temporary.path().c_str(), path_.c_str()) != 0)  // a filesystem without hard links
     throw_system(path_, "cannot create the journal", errno);
@@ -328,27 +410,11 @@ void Journal::load(const JournalIdentity& identity) {
   struct stat status {};
   if (::fstat(fd_, &status) != 0) throw_system(path_, "cannot read the journal", errno);
   const auto file_size = static_cast<std::uint64_t>(status.st_size);
-
-  // Header. It was complete before the file got its name, so anything wrong with it is
-  // not a torn write: refuse rather than overwrite what may be someone else's file.
-  const std::uint64_t fixed = MAGIC.size() + 4 + 8 + 4;
-  if (file_size < MAGIC.size() || read_at(fd_, 0, MAGIC.size(), path_) != MAGIC)
-    throw InputError(path_ + ": not a stengmc journal (it does not start with " + std::string(MAGIC) +
-                     "); refusing to overwrite it. " + how_to_start_afresh(path_));
-  if (file_size < fixed) throw InputError(path_ + ": the journal header is damaged. " + how_to_start_afresh(path_));
-  const std::string head = read_at(fd_, 0, fixed, path_);
-  const auto version = little_endian(std::string_view(head).substr(MAGIC.size(), 4));
-  const auto study_hash = little_endian(std::string_view(head).substr(MAGIC.size() + 4, 8));
-  const auto description_size = little_endian(std::string_view(head).substr(MAGIC.size() + 12, 4));
-  if (version != FORMAT_VERSION)
-    throw InputError(path_ + ": journal format version " + std::to_string(version) + ", this program reads version " +
-                     std::to_string(FORMAT_VERSION) + ". " + how_to_start_afresh(path_));
-  if (file_size - fixed < description_size)
-    throw InputError(path_ + ": the journal header is damaged. " + how_to_start_afresh(path_));
-  const std::string description = read_at(fd_, fixed, description_size, path_);
-  if (study_hash != identity.study_hash)
+  const std::string file = read_at(fd_, 0, file_size, path_);
+  const Header header = parse_header(file, path_);
+  if (header.study_hash != identity.study_hash)
     throw InputError(path_ + ": this journal belongs to another computation: it was written for " +
-                     quoted(description) + " (study hash " + hex(study_hash) + "), this run is " +
+                     quoted(header.description) + " (study hash " + hex(header.study_hash) + "), this run is " +
                      quoted(identity.description) + " (study hash " + hex(identity.study_hash) +
                      "). The study (or the program) changed since the interrupted run, so its finished "
                      "realisations cannot be reused. " + how_to_start_afresh(path_));
@@ -357,8 +423,8 @@ void Journal::load(const JournalIdentity& identity) {
   // write) costs only the frames it touches: the scan resumes at the next offset where a
   // whole frame with a matching checksum begins. Whatever follows the last good frame is a
   // torn append (a kill mid-write) and is cut off, so appends continue after a whole record.
-  const std::uint64_t start = fixed + description_size;
-  const std::string body = read_at(fd_, start, file_size - start, path_);
+  const std::uint64_t start = header.body_start;
+  const std::string_view body = std::string_view(file).substr(start);
   std::uint64_t offset = 0, end_of_good = 0;
   while (offset < body.size()) {
     if (!frame_at(body, offset)) {
@@ -366,9 +432,8 @@ void Journal::load(const JournalIdentity& identity) {
       if (!next) break;
       offset = *next;
     }
-    const std::uint64_t length = little_endian(std::string_view(body).substr(offset, LENGTH_BYTES));
-    recovered_.push_back(decode_payload(std::string_view(body).substr(offset + LENGTH_BYTES, length), path_,
-                                        recovered_.size()));
+    const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
+    recovered_.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size()));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
     end_of_good = offset;
   }
@@ -380,22 +445,32 @@ void Journal::load(const JournalIdentity& identity) {
 }
 
 void Journal::append(const RealisationRecord& record) {
-  const std::string frame = encode_frame(record, path_);  // outside the lock: threads encode in parallel
+  // Encoded outside the lock: threads encode in parallel.
+  append_frames(encode_record_frame(record, path_), "realisation " + std::to_string(record.realisation));
+}
+
+void Journal::append(const std::vector<RealisationRecord>& records) {
+  if (records.empty()) return;
+  std::string frames;
+  for (const RealisationRecord& r : records) frames += encode_record_frame(r, path_);
+  append_frames(frames, records.size() == 1 ? "realisation " + std::to_string(records.front().realisation)
+                                            : std::to_string(records.size()) + " realisations (" +
+                                                  std::to_string(records.front().realisation) + ", ...)");
+}
+
+void Journal::append_frames(const std::string& frames, const std::string& what) {
   const std::lock_guard lock(mutex_);
-  if (fd_ < 0) throw Error(path_ + ": the journal was removed; cannot append realisation " +
-                           std::to_string(record.realisation));
-  if (broken_)
-    throw Error(path_ + ": an earlier append failed and could not be undone; not appending realisation " +
-                std::to_string(record.realisation));
-  if (!write_all(fd_, size_, frame) || ::fsync(fd_) != 0) {
+  if (fd_ < 0) throw Error(path_ + ": the journal was removed; cannot append " + what);
+  if (broken_) throw Error(path_ + ": an earlier append failed and could not be undone; not appending " + what);
+  if (!write_all(fd_, size_, frames) || ::fsync(fd_) != 0) {
     const int error = errno;
     // Cut the partial record so the file ends on a whole one again. If even that fails,
     // what lies past the last whole record is unknown (after a failed fsync the kernel may
     // have dropped pages), so stop appending; the next opening cuts the tail.
     if (::ftruncate(fd_, static_cast<off_t>(size_)) != 0) broken_ = true;
-    throw_system(path_, "cannot append realisation " + std::to_string(record.realisation) + " to the journal", error);
+    throw_system(path_, "cannot append " + what + " to the journal", error);
   }
-  size_ += frame.size();
+  size_ += frames.size();
 }
 
 void Journal::remove() {

@@ -57,6 +57,33 @@ struct JournalIdentity {
 //! 0x100000001b3). Chainable: pass the previous hash as `basis`.
 std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis = 0xcbf29ce484222325ULL);
 
+//! Encodes one record as a journal frame (length, payload, checksum): what a journal
+//! appends, what a shard file holds and what an MPI worker sends to rank 0. `path` names the
+//! destination in messages.
+std::string encode_record_frame(const RealisationRecord& record, const std::string& path);
+
+//! Decodes a whole frame from encode_record_frame; InputError naming `source` when the
+//! checksum fails or it does not parse as this program's record.
+RealisationRecord decode_record_frame(std::string_view frame, const std::string& source);
+
+//! A journal as it is on disk, read without opening it for appending (nothing is cut or
+//! locked): what `stengmc merge` reads from a shard file.
+struct JournalContents {
+  std::uint64_t study_hash = 0;
+  std::string description;
+  std::vector<RealisationRecord> records;  //!< in file order
+};
+
+//! Reads the whole journal at `path`. Unlike a resume, any damage is refused (InputError
+//! naming the file and the byte offset): a finished file written by write_journal_file is
+//! never torn, so damage there means the file cannot be trusted.
+JournalContents read_journal_file(const std::string& path);
+
+//! Writes a complete journal at `path` in one go (header and every record, under a
+//! temporary name, fsync'ed, then renamed into place): a reader sees all of it or nothing.
+void write_journal_file(const std::string& path, const JournalIdentity& identity,
+                        const std::vector<RealisationRecord>& records);
+
 //! An open journal file. Errors (disk full, permission) throw Error naming the file and the
 //! system's reason; an unusable existing file (another identity, another record format, not
 //! a journal) throws InputError saying how to start afresh.
@@ -79,6 +106,9 @@ class Journal {
   //! Thread-safe: OpenMP threads call it as they finish. On failure the file is cut back to
   //! its last whole record and Error is thrown.
   void append(const RealisationRecord& record);
+  //! Appends several records with one write and one fsync (group commit: rank 0 of an MPI
+  //! run journals what arrived together at the cost of one fsync). Same guarantees.
+  void append(const std::vector<RealisationRecord>& records);
 
   //! Deletes the file (after the final output was committed); later appends throw.
   void remove();
@@ -88,6 +118,7 @@ class Journal {
  private:
   void create(const JournalIdentity& identity);
   void load(const JournalIdentity& identity);
+  void append_frames(const std::string& frames, const std::string& what);
 
   std::string path_;
   int fd_ = -1;

@@ -111,6 +111,10 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
   ensemble_options.show_progress = options.show_progress;
   const std::clock_t cpu_start = std::clock();  // process CPU time, all threads
   const EnsembleRun run = run_ensemble(prior_study, journal_path, ensemble_options, hook);
+  if (run.worker) {
+    bank.worker = true;
+    return bank;
+  }
   bank.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   bank.resumed = run.resumed;
   bank.threads = run.threads;

@@ -44,6 +44,9 @@ struct CalibrationBank {
   double cpu_seconds = 0.0;                 //!< CPU time of the records (all threads; without the atoms)
   double estimation_cpu_seconds = 0.0;      //!< of which the estimator's (the rest: forward simulation)
   int threads = 1;
+  //! An MPI rank other than 0 (ensemble/process_world.hpp): it computed records for rank 0
+  //! and holds none; only rank 0's bank is complete and written.
+  bool worker = false;
 };
 
 struct CalibrationOptions {

@@ -89,6 +89,20 @@ class DigestTest(unittest.TestCase):
         self.assertIn("[gone] in the digest file but no longer a case", report)
         self.assertIn("[new] a new case with no digest", report)
 
+    def full_lines(self, **kwargs):
+        path = os.path.join(self.scratch.name, f"f{len(os.listdir(self.scratch.name))}.h5")
+        write(path, **kwargs)
+        return golden_digest.file_lines(path, include_text=True)
+
+    def test_same_sees_text_attributes_but_not_creation_times(self):
+        # `same` (distributed and sharded runs against one run) compares the provenance too:
+        # another title is a difference, another creation time is not (EXCLUDED_ATTRIBUTES).
+        base = self.full_lines(voltage=self.voltage, attributes={"created_utc": "2026-01-01T00:00:00Z"})
+        later = self.full_lines(voltage=self.voltage, attributes={"created_utc": "2027-05-05T10:00:00Z"})
+        retitled = self.full_lines(voltage=self.voltage, attributes={"title": "another title"})
+        self.assertEqual(base, later)
+        self.assertEqual(golden_digest.compare({"c": base}, {"c": retitled})[0].split(":")[0], "[c] /@title")
+
     def test_digest_file_round_trip(self):
         path = os.path.join(self.scratch.name, "digests.txt")
         digests = {"b": self.lines(voltage=self.voltage), "a": ["/x <f8 1 0123456789abcdef l2=1.0"]}

@@ -34,12 +34,10 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-//! Runs `stengmc arguments`; `environment` ("NAME=value ...") is set for that process only.
-inline CliResult run_cli(const std::string& arguments, const ScratchDir& scratch, const std::string& environment = "") {
+//! Runs a shell command line, capturing its exit code and output (stdout and stderr).
+inline CliResult run_command(const std::string& command_line, const ScratchDir& scratch) {
   const std::string log = scratch.file("cli.log");
-  const std::string command = (environment.empty() ? "" : "env " + environment + " ") + std::string(STENGMC_BINARY) +
-                              " " + arguments + " > " + log + " 2>&1";
-  const int status = std::system(command.c_str());
+  const int status = std::system((command_line + " > " + log + " 2>&1").c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream in(log);
@@ -47,6 +45,13 @@ inline CliResult run_cli(const std::string& arguments, const ScratchDir& scratch
   text << in.rdbuf();
   result.output = text.str();
   return result;
+}
+
+//! Runs `stengmc arguments`; `environment` ("NAME=value ...") is set for that process only.
+inline CliResult run_cli(const std::string& arguments, const ScratchDir& scratch, const std::string& environment = "") {
+  return run_command((environment.empty() ? "" : "env " + environment + " ") + std::string(STENGMC_BINARY) + " " +
+                         arguments,
+                     scratch);
 }
 
 }  // namespace stengmc::testing
