@@ -4,6 +4,7 @@
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <string_view>
 
 #include "app/commands.hpp"
@@ -40,10 +41,28 @@ bool refused_under_mpi(int argc, char** argv) {
   return true;
 }
 
+//! A build without MPI started by mpirun with several processes: each would run the whole
+//! study over the same output (they would meet at its journal). Refused with the way out.
+bool refused_without_mpi() {
+  if (stengmc::built_with_mpi()) return false;
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const char* size = std::getenv(name);
+    if (size == nullptr || std::atoi(size) <= 1) continue;
+    std::fprintf(stderr, "stengmc: input error: this stengmc was built without MPI (STENGMC_WITH_MPI=OFF) but was "
+                         "started as one of %s processes (%s): each would run the whole study. Rebuild with MPI "
+                         "(Debian: libopenmpi-dev), run one process with threads (-j), or split the work with "
+                         "--shard i/n and stengmc merge\n",
+                 size, name);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
+  if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"
                "Every quantity is in SI units. Model: MODEL.md; file layouts: README.md.\n"
