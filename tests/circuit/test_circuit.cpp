@@ -48,15 +48,10 @@ TEST(CircuitV1, ConvergesAtFifthOrder) {
   // 16 steps over 50 ms (time constant 1.1 s) are in the asymptotic range (relative errors
   // ~9e-7 .. 9e-10, far above rounding); 1 -> 2 steps is not yet (observed 4.2).
   const V1 v1;
-  std::vector<double> errors;
-  for (std::size_t steps : {4, 8, 16}) {
-    const CircuitResult result = v1.solve(1, steps);
-    errors.push_back(std::abs(result.voltage_v.back() - v1.voltage(0.05)));
-  }
-  for (std::size_t k = 1; k < errors.size(); ++k) {
-    const double order = std::log2(errors[k - 1] / errors[k]);
-    EXPECT_GT(order, 4.6) << "step halving " << k;
-    EXPECT_LT(order, 5.4) << "step halving " << k;
+  const std::vector<double> orders = testing::v1_observed_orders(v1);
+  for (std::size_t k = 0; k < orders.size(); ++k) {
+    EXPECT_GT(orders[k], 4.6) << "step halving " << k + 1;
+    EXPECT_LT(orders[k], 5.4) << "step halving " << k + 1;
   }
 }
 
@@ -66,21 +61,7 @@ TEST(CircuitQuasiStatic, VoltageApproachesRTimesSourceCurrentLinearlyInR) {
   // (the paper's finding). The leading correction is of order R sum C_i times the motion's
   // frequency, so the relative deviation must fall tenfold per decade of R, and at
   // R = 1 kOhm (R sum C ~ 7e-14 s, omega R C ~ 1e-6) be below 1e-5.
-  const FourElements four;
-  const auto motions = four.pointers();
-  const auto times = uniform_times(3e-6, 600);
-  std::vector<double> deviations;
-  for (double r : {1e6, 1e5, 1e4, 1e3}) {
-    const CircuitResult result = solve_circuit(four.elements, motions, times, {r, 0.0, 4});
-    // Skip the start-up transient (a few R sum C).
-    double num = 0.0, den = 0.0;
-    for (std::size_t j = times.size() / 10; j < times.size(); ++j) {
-      const double expected = four.quasi_static_voltage(r, times[j]);
-      num += std::pow(result.voltage_v[j] - expected, 2);
-      den += expected * expected;
-    }
-    deviations.push_back(std::sqrt(num / den));
-  }
+  const std::vector<double> deviations = testing::quasi_static_deviations(solve_circuit, 600);
   for (std::size_t k = 1; k < deviations.size(); ++k) {
     EXPECT_NEAR(deviations[k - 1] / deviations[k], 10.0, 1.5) << "decade " << k;
   }
@@ -182,18 +163,9 @@ TEST(CircuitElementCharge, MatchesElementStateAndSumsToDeliveredChargeOnPiecewis
   // x and C_i are linear in t, so (C_i u)' with u the cubic collocation polynomial is of
   // degree 3, which the quadrature (exact to degree 4) integrates exactly, transients or
   // not, and sigma w x' is constant: per element too only rounding remains (observed ~1e-14).
-  const FourElements four;
-  std::vector<std::unique_ptr<SampledMotion>> sampled;
-  std::vector<const Motion*> motions;
-  for (std::size_t i = 0; i < 4; ++i) {
-    std::vector<double> t, x;
-    for (double time = -0.7e-9 * static_cast<double>(i); time < 3.01e-6 + 3.1e-9; time += 3.1e-9) {
-      t.push_back(time);
-      x.push_back(four.motions[i].at(time, Side::right).x_m);
-    }
-    sampled.push_back(std::make_unique<SampledMotion>(t, x, Interpolation::linear));
-    motions.push_back(sampled.back().get());
-  }
+  const testing::PiecewiseLinearFour pwl;
+  const FourElements& four = pwl.four;
+  const std::vector<const Motion*>& motions = pwl.motions;
   const auto times = uniform_times(3e-6, 600);
   for (double load_capacitance : {0.0, 5e-17}) {
     const CircuitResult result = solve_circuit(four.elements, motions, times, {1e6, load_capacitance, 2});

@@ -56,12 +56,10 @@ TEST(ElementSumsV1, ConvergesAtFifthOrder) {
   // Radau IIA with 3 stages has classical order 5: over one 50 ms interval, 4 -> 8 -> 16
   // steps must divide the error of U (hence V) by ~32 (same range as test_circuit).
   const V1 v1;
-  std::vector<double> errors;
-  for (std::size_t steps : {4, 8, 16}) errors.push_back(std::abs(v1.solve(1, steps).voltage_v.back() - v1.voltage(0.05)));
-  for (std::size_t k = 1; k < errors.size(); ++k) {
-    const double order = std::log2(errors[k - 1] / errors[k]);
-    EXPECT_GT(order, 4.6) << "step halving " << k;
-    EXPECT_LT(order, 5.4) << "step halving " << k;
+  const std::vector<double> orders = testing::v1_observed_orders(v1);
+  for (std::size_t k = 0; k < orders.size(); ++k) {
+    EXPECT_GT(orders[k], 4.6) << "step halving " << k + 1;
+    EXPECT_LT(orders[k], 5.4) << "step halving " << k + 1;
   }
 }
 
@@ -70,20 +68,7 @@ TEST(ElementSumsQuasiStatic, VoltageApproachesRTimesSourceCurrentLinearlyInR) {
   // MODEL.md §2: V ~ R sum sigma_i w_i x_i' for R sum C_i short against the motion; the
   // deviation falls tenfold per decade of R and is below 1e-5 at 1 kOhm (as test_circuit).
   // 10 ns samples of 2 MHz sines: the interpolation's own error (~1e-9) is far below.
-  const FourElements four;
-  const auto motions = four.pointers();
-  const auto times = uniform_times(3e-6, 300);
-  std::vector<double> deviations;
-  for (double r : {1e6, 1e5, 1e4, 1e3}) {
-    const CircuitResult result = solve_circuit_streamed(four.elements, motions, times, {r, 0.0, 4});
-    double num = 0.0, den = 0.0;
-    for (std::size_t j = times.size() / 10; j < times.size(); ++j) {
-      const double expected = four.quasi_static_voltage(r, times[j]);
-      num += std::pow(result.voltage_v[j] - expected, 2);
-      den += expected * expected;
-    }
-    deviations.push_back(std::sqrt(num / den));
-  }
+  const std::vector<double> deviations = testing::quasi_static_deviations(solve_circuit_streamed, 300);
   for (std::size_t k = 1; k < deviations.size(); ++k) EXPECT_NEAR(deviations[k - 1] / deviations[k], 10.0, 1.5) << k;
   EXPECT_LT(deviations.back(), 1e-5);
 }
@@ -154,18 +139,9 @@ TEST(ElementSumsKinks, PiecewiseLinearInputAgreesWithTheMotionNodeSolver) {
   // and differ only by Radau's truncation, of V in one and of U = C V in the other; at 32
   // substeps that is gone (each moves by 1e-5 in V from 2 to 32 substeps, the two agree
   // to 3e-15), so they must agree to rounding (1e-12).
-  const FourElements four;
-  std::vector<std::unique_ptr<SampledMotion>> sampled;
-  std::vector<const Motion*> motions;
-  for (std::size_t i = 0; i < 4; ++i) {
-    std::vector<double> t, x;
-    for (double time = -0.7e-9 * static_cast<double>(i); time < 3.01e-6 + 3.1e-9; time += 3.1e-9) {
-      t.push_back(time);
-      x.push_back(four.motions[i].at(time, Side::right).x_m);
-    }
-    sampled.push_back(std::make_unique<SampledMotion>(t, x, Interpolation::linear));
-    motions.push_back(sampled.back().get());
-  }
+  const testing::PiecewiseLinearFour pwl;
+  const FourElements& four = pwl.four;
+  const std::vector<const Motion*>& motions = pwl.motions;
   const auto times = uniform_times(3e-6, 600);
   const CircuitParams params{1e6, 0.0, 32};
   const CircuitResult reference = solve_circuit(four.elements, motions, times, params);
