@@ -4,7 +4,6 @@
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <cstdlib>
 #include <string_view>
 
 #include "app/commands.hpp"
@@ -44,18 +43,14 @@ bool refused_under_mpi(int argc, char** argv) {
 //! A build without MPI started by mpirun with several processes: each would run the whole
 //! study over the same output (they would meet at its journal). Refused with the way out.
 bool refused_without_mpi() {
-  if (stengmc::built_with_mpi()) return false;
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
-    const char* size = std::getenv(name);
-    if (size == nullptr || std::atoi(size) <= 1) continue;
-    std::fprintf(stderr, "stengmc: input error: this stengmc was built without MPI (STENGMC_WITH_MPI=OFF) but was "
-                         "started as one of %s processes (%s): each would run the whole study. Rebuild with MPI "
-                         "(Debian: libopenmpi-dev), run one process with threads (-j), or split the work with "
-                         "--shard i/n and stengmc merge\n",
-                 size, name);
-    return true;
-  }
-  return false;
+  const int processes = stengmc::launcher_process_count();
+  if (stengmc::built_with_mpi() || processes <= 1) return false;
+  std::fprintf(stderr, "stengmc: input error: this stengmc was built without MPI (STENGMC_WITH_MPI=OFF) but was "
+                       "started as one of %d processes: each would run the whole study. Rebuild with MPI (Debian: "
+                       "libopenmpi-dev), run one process with threads (-j), or split the work with --shard i/n and "
+                       "stengmc merge\n",
+               processes);
+  return true;
 }
 
 }  // namespace

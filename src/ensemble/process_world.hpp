@@ -25,6 +25,10 @@ bool built_with_mpi();
 //! or a PMI/PMIx launch such as Slurm's srun (PMIX_RANK, PMI_SIZE).
 bool launched_by_mpi_launcher();
 
+//! How many processes the launcher says it started (OMPI_COMM_WORLD_SIZE or PMI_SIZE), 1
+//! when none says so; readable without MPI, so a build without it can tell it was launched.
+int launcher_process_count();
+
 //! Starts MPI (MPI_THREAD_MULTIPLE: every OpenMP thread of a worker talks to rank 0) when
 //! built with it and launched by an MPI launcher; finalises it at the end of the scope.
 class MpiSession {
