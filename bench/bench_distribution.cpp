@@ -26,7 +26,7 @@
 #include "ensemble/run_realisation.hpp"
 #include "ensemble/shard.hpp"
 #include "ensemble/sweep.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 namespace {
 
@@ -54,7 +54,7 @@ struct Cost {
 
 //! `per_point` realisations of every grid point of a shipped study, one thread.
 Cost measure_realisations(const std::string& study, std::uint64_t per_point) {
-  const stengmc::Study base = stengmc::read_study(std::string(STENGMC_SOURCE_DIR) + "/studies/ensembles/" + study,
+  const stengmc::StudyFile base = stengmc::read_study_file(std::string(STENGMC_SOURCE_DIR) + "/studies/ensembles/" + study,
                                                   std::nullopt);
   const std::vector<stengmc::GridPoint> grid = stengmc::prepare_grid(base);
   std::vector<double> times;

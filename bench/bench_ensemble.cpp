@@ -28,7 +28,8 @@
 #include "bench_support.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/run_realisation.hpp"
-#include "io/study.hpp"
+#include "pipeline/study_realisation.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 
 #ifndef STENGMC_BUILD_TYPE
@@ -58,7 +59,7 @@ struct Timing {
 
 //! One run_ensemble from scratch (the journal is removed before and after: a leftover
 //! journal would be resumed and the run would do nothing).
-Timing run_once(const stengmc::Study& study, const fs::path& scratch, int threads) {
+Timing run_once(const stengmc::StudyFile& study, const fs::path& scratch, int threads) {
   const fs::path journal = scratch / "journal.bin";
   fs::remove(journal);
   const double busy0 = machine_busy_seconds();
@@ -83,7 +84,7 @@ Timing run_once(const stengmc::Study& study, const fs::path& scratch, int thread
 }
 
 //! Median wall time of `repetitions` runs (and the last run's counts).
-Timing run_median(const stengmc::Study& study, const fs::path& scratch, int threads, int repetitions) {
+Timing run_median(const stengmc::StudyFile& study, const fs::path& scratch, int threads, int repetitions) {
   std::vector<double> wall, cpu, others;
   Timing last;
   for (int r = 0; r < repetitions; ++r) {
@@ -124,7 +125,7 @@ int main(int argc, char** argv) try {
 
   // 1. Parallel efficiency.
   constexpr std::uint64_t EFF_REALISATIONS = 40;
-  const stengmc::Study eff_study = factory.make(20, 50e-6, EFF_REALISATIONS);
+  const stengmc::StudyFile eff_study = factory.make(20, 50e-6, EFF_REALISATIONS);
   std::vector<double> t1s, t2s, c1s, c2s, o2s;
   for (int r = 0; r < REPETITIONS; ++r) {  // interleaved, so drift hits both alike
     const Timing one = run_once(eff_study, scratch.path, 1);
@@ -199,7 +200,7 @@ int main(int argc, char** argv) try {
 
   // Where one realisation's time goes: n = 20, 50 us, one thread, realisations 0..9.
   constexpr std::uint64_t STAGE_REALISATIONS = 10;
-  const stengmc::Study base = factory.make(20, 50e-6, STAGE_REALISATIONS);
+  const stengmc::StudyFile base = factory.make(20, 50e-6, STAGE_REALISATIONS);
   double draw = 0, trib = 0, circ = 0, spec = 0, run_total = 0, realisation_total = 0;
   std::size_t ran = 0;
   for (std::uint64_t id = 0; id < STAGE_REALISATIONS; ++id) {

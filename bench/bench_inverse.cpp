@@ -26,7 +26,7 @@
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/simulated_record.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 using namespace stengmc;
 

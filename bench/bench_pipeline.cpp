@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "tribology/model2.hpp"
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 
 extern char** environ;
 
@@ -132,9 +132,9 @@ class StudyFactory {
     return study;
   }
 
-  stengmc::Study make(int count, double duration_s, std::uint64_t realisations) const {
+  stengmc::StudyFile make(int count, double duration_s, std::uint64_t realisations) const {
     const fs::path path = file(count, duration_s, realisations);
-    return stengmc::parse_study(read_text(path), path.string(), std::nullopt);
+    return stengmc::parse_study_file(read_text(path), path.string(), std::nullopt);
   }
 
  private:

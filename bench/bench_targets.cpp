@@ -152,7 +152,7 @@ void paper_process(const Options& o, const fs::path& scratch) {
 // ---- 3. Scaling --------------------------------------------------------------------------
 
 //! Thread CPU time of run_realisation, per realisation, over ids 0 .. count-1.
-double cpu_per_realisation(const stengmc::Study& base, std::uint64_t count) {
+double cpu_per_realisation(const stengmc::StudyFile& base, std::uint64_t count) {
   stengmc::run_realisation(base, 0, false);  // warm-up: plans, allocator
   const double start = bench::thread_cpu_seconds();
   for (std::uint64_t id = 0; id < count; ++id) stengmc::run_realisation(base, id, false);

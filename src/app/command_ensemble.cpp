@@ -16,7 +16,7 @@ namespace stengmc::app {
 
 namespace {
 
-std::string default_output(const Study& study, const EnsembleCommandOptions& options) {
+std::string default_output(const StudyFile& study, const EnsembleCommandOptions& options) {
   if (options.shard)
     return study.output_file + ".shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
   if (!options.only) return study.output_file;
@@ -25,7 +25,7 @@ std::string default_output(const Study& study, const EnsembleCommandOptions& opt
   return (out.parent_path() / (out.stem().string() + "_r" + std::to_string(*options.only) + ".h5")).string();
 }
 
-void print_header(const Study& study, std::size_t grid_points) {
+void print_header(const StudyFile& study, std::size_t grid_points) {
   const EnsembleSettings& e = *study.ensemble;
   std::printf("stengmc run %s: ensemble of %llu realisations", study.file.c_str(),
               static_cast<unsigned long long>(e.realisations));
@@ -68,7 +68,7 @@ std::string format_grid_table(const std::vector<GridPoint>& grid) {
 }
 
 //! What `--shard` cannot be combined with, said before anything runs.
-void check_shard_options(const Study& study, const EnsembleCommandOptions& options, bool figures) {
+void check_shard_options(const StudyFile& study, const EnsembleCommandOptions& options, bool figures) {
   if (!options.shard) return;
   const std::string shard = "--shard " + options.shard->text();
   if (process_world().distributed())
@@ -81,7 +81,7 @@ void check_shard_options(const Study& study, const EnsembleCommandOptions& optio
                      "would stop); run it whole, or over MPI");
 }
 
-void write_shard(const std::string& out, const Study& study, const ShardSpec& shard, const std::vector<GridPoint>& grid) {
+void write_shard(const std::string& out, const StudyFile& study, const ShardSpec& shard, const std::vector<GridPoint>& grid) {
   write_shard_file(out, study, shard, grid);
   std::size_t run = 0, resumed = 0;
   for (std::size_t g = 0; g < grid.size(); ++g) {
@@ -97,7 +97,7 @@ void write_shard(const std::string& out, const Study& study, const ShardSpec& sh
 
 }  // namespace
 
-void print_ensemble_results(const Study& study, const std::vector<GridPoint>& grid, bool only) {
+void print_ensemble_results(const StudyFile& study, const std::vector<GridPoint>& grid, bool only) {
   const EnsembleSettings& settings = *study.ensemble;
   if (grid.size() == 1) {
     std::printf("%s", format_ensemble_summary(grid[0].summary, grid[0].run).c_str());
@@ -121,7 +121,7 @@ void print_ensemble_results(const Study& study, const std::vector<GridPoint>& gr
     }
 }
 
-void run_ensemble_study(const Study& study, const std::string& out_option, bool figures,
+void run_ensemble_study(const StudyFile& study, const std::string& out_option, bool figures,
                         const EnsembleCommandOptions& options) {
   const std::string out = out_option.empty() ? default_output(study, options) : out_option;
   check_output_path(out, study_inputs(study), output_option(out_option, study));

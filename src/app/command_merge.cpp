@@ -30,7 +30,7 @@ void merge(const MergeOptions& options) {
   check_shard_set(shards);
   const ShardFile& first = shards.front();
   const std::string study_file = options.study.empty() ? first.study_file : options.study;
-  const Study study = read_study(study_file, std::nullopt);
+  const StudyFile study = read_study_file(study_file, std::nullopt);
   if (!study.ensemble || ensemble_identity_hash(study) != first.study_identity)
     throw InputError(study_file + " is not the study " + first.path +
                      " and the other shards ran: it, its surface file or the stengmc version changed since (the "

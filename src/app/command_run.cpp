@@ -9,7 +9,7 @@
 #include "ensemble/process_world.hpp"
 #include "ensemble/shard.hpp"
 #include "io/run_file.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
 #include "pipeline/spectral_summary.hpp"
@@ -30,7 +30,7 @@ struct RunOptions {
 };
 
 void run_single(const RunOptions& options) {
-  const Study study = read_study(options.study_file, options.realisation);
+  const StudyFile study = read_study_file(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output_file : options.out;
   check_output_path(out, study_inputs(study), output_option(options.out, study));
   check_work(estimate_run(study), options.limits.limits(), study.file + ": the run");
@@ -58,7 +58,7 @@ void run(const RunOptions& options) {
   // An [ensemble] study runs as an ensemble unless one realisation is asked for.
   const std::optional<ShardSpec> shard =
       options.shard.empty() ? std::nullopt : std::optional<ShardSpec>(parse_shard_spec(options.shard));
-  const Study base = read_study(options.study_file, std::nullopt);
+  const StudyFile base = read_study_file(options.study_file, std::nullopt);
   if (base.ensemble && !options.realisation_given) {
     EnsembleCommandOptions ensemble = options.ensemble;
     ensemble.limits = options.limits.limits();

@@ -10,7 +10,7 @@
 #include "core/progress.hpp"
 #include "io/output_path.hpp"
 #include "io/run_file.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "io/surface_file.hpp"
 #include "core/toml_reader.hpp"
 #include "pipeline/surface_examination.hpp"

@@ -7,7 +7,7 @@
 
 #include "ensemble/shard_spec.hpp"
 #include "ensemble/sweep.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/work_estimate.hpp"
 
 namespace stengmc::app {
@@ -31,11 +31,11 @@ struct EnsembleCommandOptions {
 };
 
 //! Runs an [ensemble] study: realisations in parallel, journal, statistics, output file.
-void run_ensemble_study(const stengmc::Study& study, const std::string& out, bool figures,
+void run_ensemble_study(const stengmc::StudyFile& study, const std::string& out, bool figures,
                         const EnsembleCommandOptions& options);
 
 //! The summary table (one point) or grid table (a sweep) and the target lines of a run grid.
-void print_ensemble_results(const stengmc::Study& study, const std::vector<GridPoint>& grid, bool only);
+void print_ensemble_results(const stengmc::StudyFile& study, const std::vector<GridPoint>& grid, bool only);
 
 //! Renders the figures of an output file with scripts/plot_run.py; returns the PNG paths printed.
 int render_figures(const std::string& h5_path);

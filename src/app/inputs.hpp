@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "io/output_path.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 namespace stengmc::app {
 

@@ -59,7 +59,7 @@ class RunningStatus {
 //! The 95 % CI half-width of the target's mean over the valid records with ids below
 //! `end` (only those: a resumed journal may hold later ids, which an uninterrupted run
 //! would not have seen at this point); nothing with fewer than the minimum count.
-std::optional<double> target_half_width(const Study& study, const std::map<std::uint64_t, RealisationRecord>& done,
+std::optional<double> target_half_width(const StudyFile& study, const std::map<std::uint64_t, RealisationRecord>& done,
                                         std::uint64_t end) {
   const EnsembleSettings& settings = *study.ensemble;
   std::vector<double> values;
@@ -74,7 +74,7 @@ std::optional<double> target_half_width(const Study& study, const std::map<std::
 }
 
 //! One realisation's record, with the caller's hook applied.
-RealisationRecord compute_record(const Study& study, std::uint64_t id, const WorkLimits& limits,
+RealisationRecord compute_record(const StudyFile& study, std::uint64_t id, const WorkLimits& limits,
                                  const RealisationHook& hook) {
   RealisationRecord record = run_realisation(study, id, hook.needs_traces || keeps_traces(*study.ensemble, id), limits);
   if (hook.apply) hook.apply(record);
@@ -108,7 +108,7 @@ void run_locally(const std::vector<std::uint64_t>& ids, int threads, const Compu
 
 //! Runs `ids` in parallel (over the ranks with `distributor`); records go to the journal
 //! (if any) and `done`.
-void run_batch(const Study& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
+void run_batch(const StudyFile& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
                Journal* journal, std::map<std::uint64_t, RealisationRecord>& done, Progress* progress,
                RunningStatus& status, const RealisationHook& hook, WorkDistributor* distributor) {
   std::vector<RealisationRecord> results;
@@ -153,7 +153,7 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
   return fnv1a64(git_revision(), h);
 }
 
-EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options,
+EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path, const EnsembleOptions& options,
                          const RealisationHook& hook) {
   if (!study.ensemble) throw InputError(study.file + ": the study has no [ensemble] table");
   const EnsembleSettings& settings = *study.ensemble;

@@ -10,7 +10,7 @@
 
 #include "ensemble/realisation_record.hpp"
 #include "ensemble/shard_spec.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 #include "pipeline/work_estimate.hpp"
 
 namespace stengmc {
@@ -72,7 +72,7 @@ inline constexpr std::size_t MIN_REALISATIONS_FOR_TARGET = 30;
 //! study: rank 0 journals, hands the realisations out (ensemble/work_distribution.hpp) and
 //! returns every record as a single process would; the other ranks return a run marked
 //! `worker`, without records.
-EnsembleRun run_ensemble(const Study& study, const std::string& journal_path, const EnsembleOptions& options,
+EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path, const EnsembleOptions& options,
                          const RealisationHook& hook = {});
 
 }  // namespace stengmc

@@ -1,5 +1,5 @@
 #pragma once
-//! The [ensemble] and [noise] tables of a study (README: ensembles).
+//! The [ensemble] table of a study (README: ensembles).
 #include <cstdint>
 #include <string>
 #include <optional>
@@ -62,14 +62,6 @@ struct EnsembleSettings {
 //! Most grid points a sweep may have.
 inline constexpr std::size_t MAX_GRID_POINTS = 10'000;
 
-//! Measurement noise added to the voltage before the spectral analysis (MODEL.md §3).
-struct NoiseSettings {
-  //! White Gaussian noise at this signal-to-noise ratio: sigma^2 = P / 10^(snr/10) with
-  //! P the mean square of the (mean-removed) voltage over the analysis interval [dB].
-  double snr_db = 0.0;
-};
-
 EnsembleSettings read_ensemble_settings(TomlTable& table);
-NoiseSettings read_noise_settings(TomlTable& table);
 
 }  // namespace stengmc

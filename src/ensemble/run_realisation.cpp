@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/random_stream.hpp"
 #include "core/format.hpp"
+#include "pipeline/study_realisation.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
 #include "tribology/events.hpp"
@@ -78,7 +79,7 @@ std::string flagged_failure(const Study& study, const RunResult& result) {
 
 //! `base` with realisation r's [[ensemble.draw]] values set (re-read from its text, like a
 //! sweep point); each value is recorded as the extra "draw:<parameter>".
-Study with_draws(const Study& base, std::uint64_t realisation, RealisationRecord& record) {
+Study with_draws(const StudyFile& base, std::uint64_t realisation, RealisationRecord& record) {
   std::vector<ParameterOverride> overrides = base.overrides;
   const auto& draws = base.ensemble->draws;
   for (std::size_t i = 0; i < draws.size(); ++i) {
@@ -97,7 +98,7 @@ Study with_draws(const Study& base, std::uint64_t realisation, RealisationRecord
 
 }  // namespace
 
-RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces,
+RealisationRecord run_realisation(const StudyFile& base, std::uint64_t realisation, bool keep_traces,
                                   const WorkLimits& limits) {
   RealisationRecord record;
   record.realisation = realisation;

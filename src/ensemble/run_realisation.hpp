@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "ensemble/realisation_record.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 #include "pipeline/work_estimate.hpp"
 
 namespace stengmc {
@@ -22,7 +22,7 @@ namespace stengmc {
 //! they are the study's, and would fail every realisation alike. A realisation whose work
 //! estimate, with the asperities it drew, exceeds `limits` is an invalid record whose
 //! failure starts with WORK_LIMIT_FAILURE (a resumed run with other limits runs it again).
-RealisationRecord run_realisation(const Study& base, std::uint64_t realisation, bool keep_traces,
+RealisationRecord run_realisation(const StudyFile& base, std::uint64_t realisation, bool keep_traces,
                                   const WorkLimits& limits = {});
 
 //! How the failure of a realisation refused by the work limits begins.

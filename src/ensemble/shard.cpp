@@ -22,7 +22,7 @@ bool parse_whole(std::string_view text, std::uint64_t& value) {
   return error == std::errc() && end == text.data() + text.size();
 }
 
-std::string describe(const Study& base, const ShardSpec& spec) {
+std::string describe(const StudyFile& base, const ShardSpec& spec) {
   std::ostringstream out;
   out << SHARD_MAGIC << "\nindex = " << spec.index << "\ncount = " << spec.count << "\nstudy_identity = "
       << ensemble_identity_hash(base) << "\nstudy = " << base.file << "\nprogram = stengmc " << program_version()
@@ -62,12 +62,12 @@ ShardSpec parse_shard_spec(std::string_view text) {
   return spec;
 }
 
-JournalIdentity shard_identity(const Study& base, const ShardSpec& spec) {
+JournalIdentity shard_identity(const StudyFile& base, const ShardSpec& spec) {
   const std::string description = describe(base, spec);
   return {fnv1a64(description), description};
 }
 
-void write_shard_file(const std::string& path, const Study& base, const ShardSpec& spec,
+void write_shard_file(const std::string& path, const StudyFile& base, const ShardSpec& spec,
                       const std::vector<GridPoint>& grid) {
   const std::uint64_t realisations = base.ensemble->realisations;
   std::vector<RealisationRecord> records;

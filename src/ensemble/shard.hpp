@@ -21,7 +21,7 @@
 #include "ensemble/journal.hpp"
 #include "ensemble/shard_spec.hpp"
 #include "ensemble/sweep.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 
 namespace stengmc {
 
@@ -35,10 +35,10 @@ struct ShardFile {
 };
 
 //! The identity a shard file is written under.
-JournalIdentity shard_identity(const Study& base, const ShardSpec& spec);
+JournalIdentity shard_identity(const StudyFile& base, const ShardSpec& spec);
 
 //! Writes shard `spec` of `base` from its finished grid (records of the shard's ids only).
-void write_shard_file(const std::string& path, const Study& base, const ShardSpec& spec,
+void write_shard_file(const std::string& path, const StudyFile& base, const ShardSpec& spec,
                       const std::vector<GridPoint>& grid);
 
 //! Reads a shard file; InputError naming `path` when it is not a finished shard file.

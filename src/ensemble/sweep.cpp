@@ -27,7 +27,7 @@ void check_memory(const std::vector<GridPoint>& grid, const WorkLimits& limits) 
   const double LIMIT_BYTES = limits.memory_bytes;
   double bytes = 0.0;
   for (const GridPoint& point : grid) {
-    const Study& s = point.study;
+    const StudyFile& s = point.study;
     const RandomSurface* random = s.surface->random_surface();
     const double asperities =
         random ? random->mean_summit_count() : static_cast<double>(s.surface->sample(0, 0).asperities.size());
@@ -56,14 +56,14 @@ void check_point_work(const Study& study, const WorkLimits& limits) {
                  (asperities == 1.0 ? "y" : "ies") + ")");
 }
 
-std::vector<GridPoint> prepare_grid(const Study& base, const WorkLimits& limits) {
+std::vector<GridPoint> prepare_grid(const StudyFile& base, const WorkLimits& limits) {
   const EnsembleSettings& settings = *base.ensemble;
   std::vector<GridPoint> grid(settings.grid_size());
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const std::vector<double> values = settings.grid_values(g);
     for (std::size_t a = 0; a < values.size(); ++a) grid[g].overrides.push_back({settings.sweep[a].parameter, values[a]});
     try {
-      grid[g].study = grid[g].overrides.empty() ? base : read_study(base.file, std::nullopt, grid[g].overrides);
+      grid[g].study = grid[g].overrides.empty() ? base : read_study_file(base.file, std::nullopt, grid[g].overrides);
       check_point_work(grid[g].study, limits);  // before anything the size of the run is allocated
       check_analysis_interval(grid[g].study);
     } catch (const InputError& e) {

@@ -6,13 +6,13 @@
 
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 
 namespace stengmc {
 
 struct GridPoint {
   std::vector<ParameterOverride> overrides;  //!< one per sweep axis (none without a sweep)
-  Study study;                               //!< the study read with them
+  StudyFile study;                              //!< the study read with them
   EnsembleRun run;
   EnsembleSummary summary;
 };
@@ -21,7 +21,7 @@ struct GridPoint {
 //! a value that breaks the study is reported before anything runs, naming the point. So
 //! is a point whose work no realisation could do within `limits` (with the fewest
 //! asperities it may draw: one for a random surface), and records that would not fit.
-std::vector<GridPoint> prepare_grid(const Study& base, const WorkLimits& limits = {});
+std::vector<GridPoint> prepare_grid(const StudyFile& base, const WorkLimits& limits = {});
 
 //! "param = value, ..." of a grid point, for messages; with `short_names`, each parameter
 //! by its last key only ("count = 4"), for tables.

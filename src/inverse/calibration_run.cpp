@@ -82,7 +82,7 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
   const double band_low = line_frequency_hz(bank.setup.device, s_low), band_high = line_frequency_hz(bank.setup.device, s_high);
   bank.prior_study_text =
       prior_study_text(bank.setup.device, prior, prior.calibration_records, prior.seed, band_low, band_high);
-  const Study prior_study = parse_study(bank.prior_study_text, device_study.file + " (calibration prior)", std::nullopt);
+  const StudyFile prior_study = parse_study_file(bank.prior_study_text, device_study.file + " (calibration prior)", std::nullopt);
 
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::vector<std::unique_ptr<Worker>> workers(static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));

@@ -10,7 +10,7 @@
 #include "inverse/bank_identity.hpp"
 #include "inverse/calibration_maps.hpp"
 #include "inverse/calibration_sample.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 namespace stengmc {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "model/asperity.hpp"
 #include "tribology/model2.hpp"
 

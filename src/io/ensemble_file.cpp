@@ -10,7 +10,7 @@ namespace stengmc {
 
 namespace {
 
-void write_grid(Hdf5Writer& f, const Study& base, const std::vector<GridPoint>& grid) {
+void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoint>& grid) {
   const EnsembleSettings& e = *base.ensemble;
   if (e.sweep.empty()) return;
   std::vector<std::string> names;
@@ -57,7 +57,7 @@ void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
 }
 
 //! [[ensemble.draw]] values, one row per realisation in /realisations order.
-void write_draws(Hdf5Writer& f, const Study& base, const std::vector<GridPoint>& grid) {
+void write_draws(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoint>& grid) {
   const auto& draws = base.ensemble->draws;
   if (draws.empty()) return;
   std::vector<std::string> names;
@@ -148,7 +148,7 @@ void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
 
 }  // namespace
 
-void write_ensemble_file(const std::string& path, const Study& base, const std::vector<GridPoint>& grid) {
+void write_ensemble_file(const std::string& path, const StudyFile& base, const std::vector<GridPoint>& grid) {
   Hdf5Writer file(path);
   write_provenance(file, {.file_type = "stengmc-ensemble",
                           .input_file = base.file,

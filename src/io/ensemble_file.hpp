@@ -27,11 +27,11 @@
 #include <vector>
 
 #include "ensemble/sweep.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 namespace stengmc {
 
 //! `base` is the study as written; `grid` its grid points (one without a sweep), run.
-void write_ensemble_file(const std::string& path, const Study& base, const std::vector<GridPoint>& grid);
+void write_ensemble_file(const std::string& path, const StudyFile& base, const std::vector<GridPoint>& grid);
 
 }  // namespace stengmc

@@ -7,7 +7,7 @@
 
 #include "circuit/circuit_solver.hpp"
 #include "core/hdf5_file.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
 

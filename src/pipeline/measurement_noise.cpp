@@ -3,6 +3,8 @@
 #include <boost/random/normal_distribution.hpp>
 #include <cmath>
 
+#include "core/format.hpp"
+
 namespace stengmc {
 
 NoisyVoltage add_white_noise(std::span<const double> voltage_v, std::size_t first, std::size_t count, double snr_db,
@@ -23,6 +25,15 @@ NoisyVoltage add_white_noise(std::span<const double> voltage_v, std::size_t firs
   boost::random::normal_distribution<double> normal(0.0, out.sigma_v);
   for (double& v : out.voltage_v) v += normal(engine);
   return out;
+}
+
+NoiseSettings read_noise_settings(TomlTable& t) {
+  NoiseSettings s;
+  if (!t.has("snr_db")) t.fail("snr_db", "is missing: the signal-to-noise ratio of the white noise added to V [dB]");
+  s.snr_db = t.number("snr_db", 0.0);
+  if (!std::isfinite(s.snr_db) || std::abs(s.snr_db) > 300.0)
+    t.fail("snr_db", "= " + format_number(s.snr_db) + " must lie in [-300, 300] dB");
+  return s;
 }
 
 }  // namespace stengmc

@@ -4,8 +4,19 @@
 #include <vector>
 
 #include "core/random_stream.hpp"
+#include "core/toml_reader.hpp"
 
 namespace stengmc {
+
+//! Measurement noise added to the voltage before the spectral analysis (MODEL.md §3):
+//! the study's [noise] table.
+struct NoiseSettings {
+  //! White Gaussian noise at this signal-to-noise ratio: sigma^2 = P / 10^(snr/10) with
+  //! P the mean square of the (mean-removed) voltage over the analysis interval [dB].
+  double snr_db = 0.0;
+};
+
+NoiseSettings read_noise_settings(TomlTable& table);
 
 struct NoisyVoltage {
   std::vector<double> voltage_v;  //!< the voltage plus white Gaussian noise [V]

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "circuit/circuit_solver.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/analyse_spectra.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "pipeline/validity.hpp"

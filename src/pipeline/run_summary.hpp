@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 
 namespace stengmc {

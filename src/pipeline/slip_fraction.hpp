@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <span>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 namespace stengmc {
 

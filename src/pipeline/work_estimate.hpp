@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "surface/random_surface.hpp"
 

@@ -14,7 +14,7 @@
 #include "inverse/calibration_run.hpp"
 #include "inverse/simulated_record.hpp"
 #include "core/hdf5_file.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
 

@@ -14,7 +14,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/hdf5_file.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "support/cli_runner.hpp"
 

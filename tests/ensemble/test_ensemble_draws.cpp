@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/journal.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {
@@ -82,7 +82,7 @@ double drawn(const RealisationRecord& r, const std::string& parameter) { return 
 
 TEST(EnsembleDraws, EachRealisationDrawsItsOwnParametersAndUsesThem) {
   ScratchDir scratch("ensemble-draws");
-  const Study study = parse_study(drawn_study(), scratch.file("study.toml"), std::nullopt);
+  const StudyFile study = parse_study_file(drawn_study(), scratch.file("study.toml"), std::nullopt);
   const EnsembleRun run = run_ensemble(study, scratch.file("a.journal"), {.threads = 1, .show_progress = false});
   ASSERT_EQ(run.records.size(), 12u);
   bool counts_vary = false;
@@ -117,7 +117,7 @@ TEST(EnsembleDraws, EachRealisationDrawsItsOwnParametersAndUsesThem) {
 
 TEST(EnsembleDraws, BitwiseTheSameOnOneAndTwoThreadsAndAlone) {
   ScratchDir scratch("ensemble-draws-threads");
-  const Study study = parse_study(drawn_study(), scratch.file("study.toml"), std::nullopt);
+  const StudyFile study = parse_study_file(drawn_study(), scratch.file("study.toml"), std::nullopt);
   const EnsembleRun one = run_ensemble(study, scratch.file("one.journal"), {.threads = 1, .show_progress = false});
   const EnsembleRun two = run_ensemble(study, scratch.file("two.journal"), {.threads = 2, .show_progress = false});
   const EnsembleRun alone = run_ensemble(study, "", {.only = 5, .show_progress = false});
@@ -137,7 +137,7 @@ TEST(EnsembleDraws, BitwiseTheSameOnOneAndTwoThreadsAndAlone) {
 
 TEST(EnsembleDraws, HookReducesEachRecordAndIsPartOfTheJournalsIdentity) {
   ScratchDir scratch("ensemble-hook");
-  const Study study = parse_study(drawn_study(), scratch.file("study.toml"), std::nullopt);
+  const StudyFile study = parse_study_file(drawn_study(), scratch.file("study.toml"), std::nullopt);
   RealisationHook hook;
   hook.needs_traces = true;
   hook.identity = "peak v1";
@@ -182,7 +182,7 @@ TEST(EnsembleDraws, HookReducesEachRecordAndIsPartOfTheJournalsIdentity) {
 TEST(EnsembleDraws, BadDrawsAreRefused) {
   auto refused = [](const std::string& text, const std::string& expected) {
     try {
-      parse_study(text, "bad.toml", std::nullopt);
+      parse_study_file(text, "bad.toml", std::nullopt);
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
       return;

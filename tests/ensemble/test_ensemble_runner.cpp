@@ -10,7 +10,7 @@
 
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {
@@ -34,7 +34,7 @@ TEST(EnsembleStatistics, ConfidenceIntervalCoversTheKnownMeanOfAContrivedStudy) 
   constexpr int seeds = 120;
   int covered = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
-    const Study study = parse_study(contrived_study(static_cast<std::uint64_t>(seed)), scratch.file("study.toml"), std::nullopt);
+    const StudyFile study = parse_study_file(contrived_study(static_cast<std::uint64_t>(seed)), scratch.file("study.toml"), std::nullopt);
     const EnsembleRun run = run_ensemble(study, scratch.file("coverage.journal"), {.show_progress = false});
     std::filesystem::remove(scratch.file("coverage.journal"));
     ASSERT_EQ(run.records.size(), 20u);

@@ -36,7 +36,7 @@
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
-#include "io/study.hpp"
+#include "ensemble/study_file.hpp"
 #include "core/toml_reader.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
@@ -195,7 +195,7 @@ std::vector<std::string> hdf5_seeds(const fs::path& scratch) {
                              "\n[surface]\n[surface.defaults]\nlength_m = 50e-6\n[[surface.asperity]]\n"
                              "stiffness_n_per_m = 75\n[[surface.asperity]]\nstiffness_n_per_m = 155\n"
                              "[spectrum]\nhigh_resolution = false\n";
-    const Study study = parse_study(text, (scratch / "seed.toml").string());
+    const StudyFile study = parse_study_file(text, (scratch / "seed.toml").string());
     const RunResult result = run_study(study, RunOptions{.show_progress = false});
     const fs::path file = scratch / "seed.h5";
     write_run_file(file.string(), study, result, summarise(study, result));
@@ -239,7 +239,7 @@ void require_finite(const std::vector<double>& values, const char* what) {
 }
 
 void read_study_input(const fs::path& file) {
-  const Study study = read_study(file.string(), 0);
+  const StudyFile study = read_study_file(file.string(), 0);
   if (study.ensemble) return;  // an ensemble's realisations are the same runs; reading was the test
   check_work(estimate_run(study), LIMITS, study.file);
   const RunResult result = run_study(study, RunOptions{.show_progress = false, .limits = LIMITS});

@@ -16,7 +16,7 @@
 #include "inverse/inversion.hpp"
 #include "inverse/record_input.hpp"
 #include "inverse/simulated_record.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
 

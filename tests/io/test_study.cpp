@@ -4,7 +4,7 @@
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 
 namespace stengmc {

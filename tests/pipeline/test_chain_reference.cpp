@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "support/coupled_chain_reference.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 
 namespace stengmc {

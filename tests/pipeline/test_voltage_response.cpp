@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/voltage_response.hpp"
 

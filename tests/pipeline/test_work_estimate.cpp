@@ -14,7 +14,7 @@
 #include <string>
 
 #include "core/format.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "support/cli_runner.hpp"

@@ -1,16 +1,20 @@
 #pragma once
-//! A study: everything one run needs, read from a TOML study file (README: study files).
+//! A study: everything one run (one realisation) needs, read from a TOML study file
+//! (README: study files). The tables of higher layers are theirs: [ensemble] is read by
+//! the ensemble layer (ensemble/study_file.hpp), [inverse] by the inverse commands.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include <functional>
 #include <memory>
 #include <optional>
 
 #include "circuit/circuit_solver.hpp"
-#include "ensemble/ensemble_settings.hpp"
 #include "spectral/spectrum_settings.hpp"
+#include "core/toml_reader.hpp"
 #include "model/asperity.hpp"
+#include "pipeline/measurement_noise.hpp"
 #include "surface/surface.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
@@ -43,7 +47,7 @@ struct OutputTraces {
   bool x0 = true;        //!< /asperity/x0 (Model 1)
 };
 
-//! A swept parameter's value at one grid point (EnsembleSettings::sweep).
+//! A swept or drawn parameter's value (an ensemble's sweep or draws) set before reading.
 struct ParameterOverride {
   std::string parameter;  //!< dotted key; "surface.*" reaches into the surface file the study names
   double value = 0.0;
@@ -72,7 +76,6 @@ struct Study {
   OutputTraces traces;        //!< which traces it writes
   std::vector<ParameterOverride> overrides;  //!< values set by a sweep before reading (none otherwise)
   std::optional<SpectrumSettings> spectrum;  //!< spectral analysis, when the study has [spectrum]
-  std::optional<EnsembleSettings> ensemble;  //!< when the study is an ensemble ([ensemble])
   std::optional<NoiseSettings> noise;        //!< measurement noise on V before the spectra ([noise])
 
   //! The output grid.
@@ -83,7 +86,8 @@ struct Study {
 //! (none when nullopt: an ensemble draws each with study_for_realisation); throws
 //! InputError naming file, line, key and what was expected (ModelError when the
 //! realisation itself cannot be loaded). Relative surface paths are taken from the study
-//! file's folder.
+//! file's folder. An [ensemble] table is left unread (and unchecked): read the file with
+//! read_study_file (ensemble/study_file.hpp) where an ensemble matters.
 Study read_study(const std::string& file, std::optional<std::uint64_t> realisation = 0,
                  const std::vector<ParameterOverride>& overrides = {});
 
@@ -92,10 +96,14 @@ Study read_study(const std::string& file, std::optional<std::uint64_t> realisati
 Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation = 0,
                   const std::vector<ParameterOverride>& overrides = {});
 
-//! `base` (read without a realisation, or with another) at realisation `realisation`:
-//! population and asperities drawn from (seed, realisation) alone.
-//! @throws ModelError when the realisation has nothing to simulate or aliases its lines.
-Study study_for_realisation(const Study& base, std::uint64_t realisation);
+//! Reads the tables a higher layer owns ([ensemble]) from the study's root table, after
+//! the pipeline's own and before unknown keys are rejected.
+using UpperTablesReader = std::function<void(TomlTable& root)>;
+
+//! The reader behind read_study / parse_study for a document a higher layer has opened:
+//! `upper_tables` reads that layer's tables (without it, [ensemble] is left unread).
+Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> realisation,
+                           const std::vector<ParameterOverride>& overrides, const UpperTablesReader& upper_tables);
 
 //! The tribology model of a study file alone ([model]; nothing else is read or drawn).
 struct ModelParameters {

@@ -1,5 +1,4 @@
-#include "core/format.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +7,9 @@
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
+#include "pipeline/study_realisation.hpp"
 #include "surface/surface.hpp"
 
 namespace stengmc {
@@ -114,46 +115,6 @@ void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOver
   study.surface_text = document->text();
 }
 
-//! Draws the study's realisation into `population` and `asperities`. Everything that can
-//! go wrong here belongs to the realisation, not to the file: a ModelError naming both,
-//! which an ensemble counts as an invalid realisation.
-void draw_population(Study& study) {
-  study.population = study.surface->sample(study.seed, study.realisation);
-  study.asperities = study.population.asperities;
-  const std::string which = study.file + ": realisation " + std::to_string(study.realisation);
-  const std::string seed = "seed " + std::to_string(study.seed);
-  const auto& contact = study.population.contact;
-  if (contact && !contact->load_carried)
-    throw ModelError(which + " drew no summits (" + seed + "): no separation can carry the nominal load W; nothing to simulate");
-  if (study.asperities.empty())
-    throw ModelError(which + " has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
-                     " summits drawn, " + seed + "): nothing to simulate");
-}
-
-//! Sampling below twice the highest natural frequency aliases the asperity lines. For a
-//! fixed list that is the file's fault (InputError at sample_rate_hz); for a random
-//! surface, the realisation's (ModelError, see draw_population).
-void check_sample_rate(const Study& study, TomlTable* root) {
-  double highest_hz = 0.0;
-  std::size_t which = 0;
-  for (std::size_t i = 0; i < study.asperities.size(); ++i) {
-    const Asperity& a = study.asperities[i];
-    const double f = std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI);
-    if (f > highest_hz) {
-      highest_hz = f;
-      which = i;
-    }
-  }
-  if (study.sample_rate_hz >= 2.0 * highest_hz) return;
-  const std::string what = "= " + format_number(study.sample_rate_hz) + " Hz is below twice the highest natural frequency (" +
-                           format_number(highest_hz) + " Hz, asperity " + std::to_string(which + 1) +
-                           "): use at least " + format_number(2.0 * highest_hz) + " Hz";
-  if (study.surface->random_surface())
-    throw ModelError(study.file + ": realisation " + std::to_string(study.realisation) + ": sample_rate_hz " + what);
-  if (root) root->fail("sample_rate_hz", what);
-  throw InputError(study.file + ": sample_rate_hz " + what);
-}
-
 void read_circuit(TomlTable& root, Study& study) {
   auto circuit = root.table("circuit");
   if (!circuit) return;
@@ -172,8 +133,10 @@ std::string default_output_file(const std::string& study_file) {
   return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
 }
 
-Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
-            const std::vector<ParameterOverride>& overrides) {
+}  // namespace
+
+Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> realisation,
+                           const std::vector<ParameterOverride>& overrides, const UpperTablesReader& upper_tables) {
   Study study;
   study.overrides = overrides;
   // Swept values are set before anything is read; "surface.*" goes to the surface file
@@ -184,7 +147,6 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
     if (surface_file && o.parameter.rfind("surface.", 0) == 0) surface_overrides.push_back(o);
     else document.set_number(o.parameter, o.value);
   }
-  study.realisation = realisation.value_or(0);
   study.file = document.file();
   study.text = document.text();
   TomlTable root = document.root();
@@ -202,14 +164,16 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
     study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
   }
   if (auto spectrum = root.table("spectrum")) study.spectrum = read_spectrum_settings(*spectrum);
-  if (auto ensemble = root.table("ensemble")) study.ensemble = read_ensemble_settings(*ensemble);
   if (auto noise = root.table("noise")) {
     study.noise = read_noise_settings(*noise);
     if (!study.spectrum) noise->fail("snr_db", "needs a [spectrum] table: the noise is added to the voltage the spectra analyse");
   }
   // [inverse] (the prior of `stengmc calibrate` / `invert`) belongs to the inverse layer,
-  // which reads and checks it itself.
+  // which reads and checks it itself; [ensemble] to the ensemble layer, which reads it
+  // here when it opened the document.
   if (root.has("inverse")) document.defer_table("inverse");
+  if (upper_tables) upper_tables(root);
+  else if (root.has("ensemble")) document.defer_table("ensemble");
   study.output_file = default_output_file(study.file);
   if (auto output = root.table("output")) {
     study.output_file = output->string("file", study.output_file);
@@ -222,10 +186,7 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
   }
   document.reject_unknown_keys();
 
-  if (realisation) {
-    draw_population(study);
-    check_sample_rate(study, &root);
-  }
+  if (realisation) draw_realisation(study, *realisation, &root);
   // The grid must end at duration_s: a fractional sample count would silently change it.
   const double intervals = study.duration_s * study.sample_rate_hz;
   if (std::abs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals))
@@ -250,8 +211,6 @@ Study parse(TomlDocument& document, std::optional<std::uint64_t> realisation,
   return study;
 }
 
-}  // namespace
-
 ModelParameters read_model_parameters(const std::string& file) {
   auto document = TomlDocument::from_file(file);
   TomlTable root = document->root();
@@ -261,24 +220,16 @@ ModelParameters read_model_parameters(const std::string& file) {
   return {study.model, study.model1, study.model2};
 }
 
-Study study_for_realisation(const Study& base, std::uint64_t realisation) {
-  Study study = base;
-  study.realisation = realisation;
-  draw_population(study);
-  check_sample_rate(study, nullptr);
-  return study;
-}
-
 Study read_study(const std::string& file, std::optional<std::uint64_t> realisation,
                  const std::vector<ParameterOverride>& overrides) {
   auto document = TomlDocument::from_file(file);
-  return parse(*document, realisation, overrides);
+  return parse_study_document(*document, realisation, overrides, {});
 }
 
 Study parse_study(const std::string& text, const std::string& file, std::optional<std::uint64_t> realisation,
                   const std::vector<ParameterOverride>& overrides) {
   auto document = TomlDocument::from_string(text, file);
-  return parse(*document, realisation, overrides);
+  return parse_study_document(*document, realisation, overrides, {});
 }
 
 }  // namespace stengmc
