@@ -17,6 +17,8 @@ when anything above was found; 2 when the map is wrong (a file of src/ no compon
 owns, an unknown mode). `--mode` overrides the map's `mode`.
 """
 import argparse
+import contextlib
+import io
 import os
 import re
 import sys
@@ -233,6 +235,8 @@ def main():
     parser.add_argument("--src", default=os.path.join(SOURCE_DIR, "src"), help="the source tree (default: src/)")
     parser.add_argument("--layers", help="the layer map (default: SRC/layers.toml)")
     parser.add_argument("--mode", choices=("report", "enforce"), help="override the map's mode")
+    parser.add_argument("--quiet", action="store_true",
+                        help="print the report only when it finds a violation (the build's check)")
     args = parser.parse_args()
     layers_path = args.layers or os.path.join(args.src, "layers.toml")
     try:
@@ -245,7 +249,11 @@ def main():
         print(f"check_layers: {layers_path}: mode = '{mode}' must be 'report' or 'enforce'", file=sys.stderr)
         return 2
     findings["mode"] = mode
-    violations = report(findings, args.src, layers_path)
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        violations = report(findings, args.src, layers_path)
+    if violations or not args.quiet:
+        print(printed.getvalue(), end="")
     if violations and mode == "enforce":
         print(f"FAILED: {violations} layering violation(s)")
         return 1

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/name_table.hpp"
+
 namespace stengmc {
 
 class TomlDocument;
@@ -32,6 +34,11 @@ class TomlTable {
   bool boolean(std::string_view key, bool fallback);
   //! A string that must be one of `allowed`; `fallback` when absent.
   std::string choice(std::string_view key, std::string_view fallback, const std::vector<std::string_view>& allowed);
+  //! A value of an enumeration, by its name in `names`; `fallback` when absent.
+  template <class Enum, std::size_t N>
+  Enum enumeration(std::string_view key, Enum fallback, const NameTable<Enum, N>& names) {
+    return names.value(choice(key, names.name(fallback), names.names()));
+  }
   //! An array of finite numbers (integers or floats), empty when absent.
   std::vector<double> number_list(std::string_view key);
   //! An array of strings, each one of `allowed` (empty when absent).

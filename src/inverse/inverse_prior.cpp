@@ -9,15 +9,6 @@
 
 namespace stengmc {
 
-std::string_view stiffness_family_name(StiffnessFamily family) {
-  switch (family) {
-    case StiffnessFamily::lognormal: return "lognormal";
-    case StiffnessFamily::gamma: return "gamma";
-    case StiffnessFamily::weibull: return "weibull";
-  }
-  return "?";
-}
-
 Distribution InversePrior::law(double p1, double p2) const {
   switch (family) {
     case StiffnessFamily::lognormal: return Distribution::lognormal(p1, p2);
@@ -94,15 +85,14 @@ InversePrior read_inverse_prior(TomlTable& t) {
     p.count_min = static_cast<std::size_t>(c[0]);
     p.count_max = static_cast<std::size_t>(c[1]);
   }
-  const std::string family = t.choice("stiffness_law", "lognormal", {"lognormal", "gamma", "weibull"});
-  p.family = family == "lognormal" ? StiffnessFamily::lognormal : family == "gamma" ? StiffnessFamily::gamma : StiffnessFamily::weibull;
+  p.family = t.enumeration("stiffness_law", StiffnessFamily::lognormal, STIFFNESS_FAMILY_NAMES);
   if (p.family == StiffnessFamily::lognormal) {
     p.first = read_range(t, "median_n_per_m", p.first, true);
     p.second = read_range(t, "sigma_log", p.second, true);
   } else {
     // No paper value to default to: a gamma or Weibull prior states its ranges.
-    if (!t.has("shape")) t.fail("shape", "is missing: a " + family + " stiffness law needs shape = [min, max]");
-    if (!t.has("scale_n_per_m")) t.fail("scale_n_per_m", "is missing: a " + family + " stiffness law needs scale_n_per_m = [min, max]");
+    if (!t.has("shape")) t.fail("shape", "is missing: a " + std::string(stiffness_family_name(p.family)) + " stiffness law needs shape = [min, max]");
+    if (!t.has("scale_n_per_m")) t.fail("scale_n_per_m", "is missing: a " + std::string(stiffness_family_name(p.family)) + " stiffness law needs scale_n_per_m = [min, max]");
     p.first = read_range(t, "shape", p.first, true);
     p.second = read_range(t, "scale_n_per_m", p.second, true);
   }

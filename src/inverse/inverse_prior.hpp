@@ -15,8 +15,13 @@ namespace stengmc {
 
 //! The family of the sliding asperities' stiffness law.
 enum class StiffnessFamily { lognormal, gamma, weibull };
+//! `[inverse] stiffness_law`; the names are also the surface file's distribution kinds.
+inline constexpr NameTable STIFFNESS_FAMILY_NAMES{
+    std::array{NamedValue<StiffnessFamily>{StiffnessFamily::lognormal, "lognormal"},
+               NamedValue<StiffnessFamily>{StiffnessFamily::gamma, "gamma"},
+               NamedValue<StiffnessFamily>{StiffnessFamily::weibull, "weibull"}}};
 
-std::string_view stiffness_family_name(StiffnessFamily family);
+inline std::string_view stiffness_family_name(StiffnessFamily family) { return STIFFNESS_FAMILY_NAMES.name(family); }
 
 struct InversePrior {
   std::size_t count_min = 1;   //!< fewest sliding asperities a record may hold

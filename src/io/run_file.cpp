@@ -29,7 +29,7 @@ void write_model(Hdf5Writer& file, const Study& study) {
     file.attribute("/model", "kinetic_friction", p.friction.kinetic_coefficient);
     file.attribute("/model", "drive_amplitude_m", p.drive_amplitude_m);
     file.attribute("/model", "drive_angular_frequency_rad_per_s", p.drive_angular_frequency_rad_per_s);
-    file.attribute("/model", "solver", p.solver == Model1Solver::exact ? "exact" : "euler_cromer");
+    file.attribute("/model", "solver", MODEL1_SOLVER_NAMES.name(p.solver));
     file.attribute("/model", "euler_cromer_substeps", static_cast<std::int64_t>(p.euler_cromer_substeps));
     file.attribute("/model", "friction_convention",
                    "tangential force the asperity transmits: mu_k N sign(x') sliding, k (x0 - x) stuck (MODEL.md 1)");
@@ -41,7 +41,7 @@ void write_model(Hdf5Writer& file, const Study& study) {
     file.attribute("/model", "damping_n_s_per_m", p.damping_n_s_per_m);
     file.attribute("/model", "stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
     file.attribute("/model", "atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
-    file.attribute("/model", "friction_form", p.friction_form == FrictionForm::consistent ? "consistent" : "literal");
+    file.attribute("/model", "friction_form", FRICTION_FORM_NAMES.name(p.friction_form));
     file.attribute("/model", "relative_tolerance", p.relative_tolerance);
     file.attribute("/model", "friction_convention", "F(v_r), the belt's friction force on the asperity, v_r = v_b - x' (MODEL.md 1)");
   }
@@ -151,7 +151,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
     file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);
     file.attribute("/circuit/measured_voltage", "snr_db", study.noise->snr_db);
   }
-  file.attribute("/circuit", "input", study.circuit_input == CircuitInput::actual ? "actual" : "imposed");
+  file.attribute("/circuit", "input", CIRCUIT_INPUT_NAMES.name(study.circuit_input));
   file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);
   file.attribute("/circuit", "voltage_peak_v", summary.voltage_peak_v);
   file.attribute("/circuit", "final_charge_c", summary.final_charge_c);

@@ -23,18 +23,27 @@
 namespace stengmc {
 
 enum class ModelKind { model1, model2 };
+//! `[model] kind` in study and run files.
+inline constexpr NameTable MODEL_KIND_NAMES{std::array{NamedValue<ModelKind>{ModelKind::model1, "model1"},
+                                                       NamedValue<ModelKind>{ModelKind::model2, "model2"}}};
 
 //! What to do when an asperity's x reaches its element's l (MODEL.md §2).
 enum class DomainPolicy {
   error,  //!< stop the run with a message naming the asperity and the time
   flag,   //!< keep the tribology, cut the circuit at the first exit, mark the run invalid
 };
+//! `[domain] policy`.
+inline constexpr NameTable DOMAIN_POLICY_NAMES{std::array{NamedValue<DomainPolicy>{DomainPolicy::error, "error"},
+                                                          NamedValue<DomainPolicy>{DomainPolicy::flag, "flag"}}};
 
 //! What drives the S-TENG elements.
 enum class CircuitInput {
   actual,   //!< the asperity's own displacement x(t) (the default)
   imposed,  //!< Model 1's imposed x0(t), as in the paper's Fig. 3c
 };
+//! `[circuit] input`.
+inline constexpr NameTable CIRCUIT_INPUT_NAMES{std::array{NamedValue<CircuitInput>{CircuitInput::actual, "actual"},
+                                                          NamedValue<CircuitInput>{CircuitInput::imposed, "imposed"}}};
 
 //! Which n x M traces a run file holds (README: output files); all by default. The
 //! voltage, charge, time and per-asperity parameters are always written.
@@ -113,7 +122,7 @@ struct ModelParameters {
 };
 ModelParameters read_model_parameters(const std::string& file);
 
-std::string_view model_name(ModelKind kind);
-std::string_view domain_policy_name(DomainPolicy policy);
+inline std::string_view model_name(ModelKind kind) { return MODEL_KIND_NAMES.name(kind); }
+inline std::string_view domain_policy_name(DomainPolicy policy) { return DOMAIN_POLICY_NAMES.name(policy); }
 
 }  // namespace stengmc

@@ -14,9 +14,6 @@
 
 namespace stengmc {
 
-std::string_view model_name(ModelKind kind) { return kind == ModelKind::model1 ? "model1" : "model2"; }
-std::string_view domain_policy_name(DomainPolicy policy) { return policy == DomainPolicy::error ? "error" : "flag"; }
-
 namespace {
 
 // Friction coefficients at most (read_friction says why).
@@ -48,21 +45,18 @@ void read_model(TomlTable& root, Study& study) {
   auto model = root.table("model");
   if (!model) root.fail("model", "is missing: a [model] table with kind = \"model1\" or \"model2\" is required");
   if (!model->has("kind")) model->fail("kind", "is missing: \"model1\" (imposed sinusoid) or \"model2\" (moving belt)");
-  const std::string kind = model->choice("kind", "", {"model1", "model2"});
-  if (kind == "model1") {
-    study.model = ModelKind::model1;
+  study.model = MODEL_KIND_NAMES.value(model->choice("kind", "", MODEL_KIND_NAMES.names()));
+  if (study.model == ModelKind::model1) {
     Model1Params& p = study.model1;
     p.friction = read_friction(*model);
     p.drive_amplitude_m = model->non_negative("drive_amplitude_m", p.drive_amplitude_m);
     p.drive_angular_frequency_rad_per_s =
         2.0 * PI * model->positive("drive_frequency_hz", p.drive_angular_frequency_rad_per_s / (2.0 * PI));
-    const std::string solver = model->choice("solver", "exact", {"exact", "euler_cromer"});
-    p.solver = solver == "exact" ? Model1Solver::exact : Model1Solver::euler_cromer;
+    p.solver = model->enumeration("solver", p.solver, MODEL1_SOLVER_NAMES);
     // Read whatever the solver, so switching `solver` back and forth never makes it "unknown".
     p.euler_cromer_substeps = static_cast<std::size_t>(model->integer("euler_cromer_substeps", 1, 1));
     if (p.euler_cromer_substeps > 1'000'000) model->fail("euler_cromer_substeps", "must be <= 1000000");
   } else {
-    study.model = ModelKind::model2;
     Model2Params& p = study.model2;
     p.friction = read_friction(*model);
     p.belt_velocity_m_per_s = model->number("belt_velocity_m_per_s", p.belt_velocity_m_per_s);
@@ -76,8 +70,7 @@ void read_model(TomlTable& root, Study& study) {
       model->fail("atan_sharpness_s_per_m", "= " + format_number(p.atan_sharpness_s_per_m) + " must be <= " +
                                                 format_number(MAX_ATAN_SHARPNESS_S_PER_M) +
                                                 " (a friction transition narrower than 0.1 nm/s)");
-    const std::string form = model->choice("friction_form", "consistent", {"consistent", "literal"});
-    p.friction_form = form == "consistent" ? FrictionForm::consistent : FrictionForm::literal;
+    p.friction_form = model->enumeration("friction_form", p.friction_form, FRICTION_FORM_NAMES);
     p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
     if (p.relative_tolerance >= 1e-2 || p.relative_tolerance < 1e-14)
       model->fail("relative_tolerance", "= " + format_number(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
@@ -123,8 +116,7 @@ void read_circuit(TomlTable& root, Study& study) {
   c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
   c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
   if (c.substeps > 1000) circuit->fail("substeps", "= " + std::to_string(c.substeps) + " must be <= 1000");
-  const std::string input = circuit->choice("input", "actual", {"actual", "imposed"});
-  study.circuit_input = input == "actual" ? CircuitInput::actual : CircuitInput::imposed;
+  study.circuit_input = circuit->enumeration("input", study.circuit_input, CIRCUIT_INPUT_NAMES);
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
     circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");
 }
@@ -160,8 +152,7 @@ Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> 
   read_surface(root, study, surface_overrides);
   read_circuit(root, study);
   if (auto domain = root.table("domain")) {
-    const std::string policy = domain->choice("policy", "error", {"error", "flag"});
-    study.domain_policy = policy == "error" ? DomainPolicy::error : DomainPolicy::flag;
+    study.domain_policy = domain->enumeration("policy", study.domain_policy, DOMAIN_POLICY_NAMES);
   }
   if (auto spectrum = root.table("spectrum")) study.spectrum = read_spectrum_settings(*spectrum);
   if (auto noise = root.table("noise")) {

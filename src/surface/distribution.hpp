@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/name_table.hpp"
 #include "core/random_stream.hpp"
 #include "core/toml_reader.hpp"
 
@@ -31,6 +32,12 @@ namespace stengmc {
 class Distribution {
  public:
   enum class Kind { normal, lognormal, uniform, gamma, weibull, fixed, empirical };
+  //! `kind` in surface files.
+  static constexpr NameTable KIND_NAMES{std::array{
+      NamedValue<Kind>{Kind::normal, "normal"}, NamedValue<Kind>{Kind::lognormal, "lognormal"},
+      NamedValue<Kind>{Kind::uniform, "uniform"}, NamedValue<Kind>{Kind::gamma, "gamma"},
+      NamedValue<Kind>{Kind::weibull, "weibull"}, NamedValue<Kind>{Kind::fixed, "fixed"},
+      NamedValue<Kind>{Kind::empirical, "empirical"}}};
 
   //! One histogram bin: density uniform on [lower, upper), total weight `weight` (>= 0).
   struct Bin {

@@ -3,6 +3,7 @@
 //! (MODEL.md §1; paper Eq. 1 with its sign typo corrected).
 #include <cstddef>
 
+#include "core/name_table.hpp"
 #include "model/asperity.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/time_grid.hpp"
@@ -15,6 +16,9 @@ enum class Model1Solver {
   exact,         //!< closed-form slip phases, transitions located to machine precision (default)
   euler_cromer,  //!< the paper's fixed-step scheme, velocity forced to zero at a sign change
 };
+//! `solver` in study and run files.
+inline constexpr NameTable MODEL1_SOLVER_NAMES{std::array{NamedValue<Model1Solver>{Model1Solver::exact, "exact"},
+                                                          NamedValue<Model1Solver>{Model1Solver::euler_cromer, "euler_cromer"}}};
 
 //! Parameters of Model 1 shared by all asperities.
 struct Model1Params {

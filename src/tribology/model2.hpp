@@ -1,5 +1,6 @@
 #pragma once
 //! Model 2: mass on a moving belt with Stribeck friction (MODEL.md §1; paper Eq. 2).
+#include "core/name_table.hpp"
 #include "model/asperity.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/time_grid.hpp"
@@ -12,6 +13,9 @@ enum class FrictionForm {
   consistent,  //!< N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|)] (2/pi) atan(s v_r)   (default)
   literal,     //!< N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]   (paper Eq. 2 as printed)
 };
+//! `friction_form` in study and run files.
+inline constexpr NameTable FRICTION_FORM_NAMES{std::array{NamedValue<FrictionForm>{FrictionForm::consistent, "consistent"},
+                                                          NamedValue<FrictionForm>{FrictionForm::literal, "literal"}}};
 
 //! Parameters of Model 2 shared by all asperities.
 struct Model2Params {
