@@ -64,7 +64,7 @@ class ScaleAttacher {
     for (std::size_t axis = 0; axis < dimensions.size(); ++axis) {
       const std::string scale_path = scale_for(parent_of(dataset.path), dimensions[axis], extent[axis]);
       const Handle scale(open(scale_path), H5Dclose);
-      if (extent_of(scale.get()) != std::vector<hsize_t>{extent[axis]})
+      if (length_of(scale.get()) != extent[axis])
         fail("axis " + std::to_string(axis) + " of " + dataset.path + " (" + std::to_string(extent[axis]) +
              " long) does not match its dimension " + scale_path);
       make_scale(scale.get(), base_name(scale_path));
@@ -89,6 +89,12 @@ class ScaleAttacher {
     return extent;
   }
 
+  //! The length of a 1-D dataset (0 for any other).
+  static hsize_t length_of(hid_t dataset) {
+    const std::vector<hsize_t> extent = extent_of(dataset);
+    return extent.size() == 1 ? extent.front() : 0;
+  }
+
   bool is_coordinate(const std::string& path) const {
     const auto found = described_.find(path);
     return found != described_.end() && names_itself(path, *found->second);
@@ -108,8 +114,8 @@ class ScaleAttacher {
     return H5Oget_info_by_name(file_, path.c_str(), &info, H5P_DEFAULT) >= 0 && info.type == H5O_TYPE_DATASET;
   }
 
-  //! The scale of dimension `name` seen from `group` (netCDF's scoping), made if absent.
-  std::string scale_for(const std::string& group, const std::string& name, hsize_t length) {
+  //! The dataset named `name` seen from `group` (netCDF's scoping), or "".
+  std::string visible(const std::string& group, const std::string& name) const {
     for (std::string g = group;; g = parent_of(g)) {
       const std::string candidate = joined(g, name);
       if (dataset_exists(candidate)) {
@@ -118,8 +124,24 @@ class ScaleAttacher {
                ", which is not its coordinate (rename the dimension)");
         return candidate;
       }
-      if (g == "/") break;
+      if (g == "/") return "";
     }
+  }
+
+  //! The scale of dimension `spec` for an axis of `length` in `group`, made if absent.
+  //! "a|b": dimension a where its scale is `length` long, else b (a leading part of a).
+  std::string scale_for(const std::string& group, const std::string& spec, hsize_t length) {
+    const std::size_t bar = spec.find('|');
+    const std::string name = spec.substr(0, bar);
+    const std::string found = visible(group, name);
+    if (bar != std::string::npos) {
+      if (!found.empty()) {
+        const Handle scale(open(found), H5Dclose);
+        if (length_of(scale.get()) == length) return found;
+      }
+      return scale_for(group, spec.substr(bar + 1), length);
+    }
+    if (!found.empty()) return found;
     const std::string made = joined(group, name);
     const hsize_t dims[1] = {length};
     const Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose);

@@ -15,7 +15,7 @@ namespace stengmc {
 struct DatasetDescription {
   std::string units;                    //!< CF/UDUNITS unit ("s", "V", "N/m"; "1": dimensionless)
   std::string long_name;                //!< what it is, in words
-  std::vector<std::string> dimensions;  //!< one name per axis, outermost first
+  std::vector<std::string> dimensions;  //!< one name per axis, outermost first ("a|b": see below)
 };
 
 //! A dataset of the file and its description.
@@ -30,7 +30,10 @@ struct DescribedDataset {
 //! one dimension named `d`, the same length) and is made a scale; where there is none, a
 //! "pure" dimension is made in G: a 1-D dataset `d` with no values whose NAME says "This
 //! is a netCDF dimension but not a netCDF variable." (netCDF-C's marker, which h5netcdf
-//! and netCDF-C read as a dimension without a variable). No written value is touched.
+//! and netCDF-C read as a dimension without a variable). A name "a|b" is dimension a
+//! where a's scale has the axis's length, else b: the circuit's traces of a run whose
+//! circuit stopped early span only the leading samples of /time. No written value is
+//! touched.
 //! Throws Error when a description contradicts the file (a wrong axis count or length, a
 //! dimension name taken by a dataset that is not its coordinate).
 void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets);

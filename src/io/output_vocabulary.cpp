@@ -30,6 +30,8 @@ struct Term {
 
 // The dimensions, one name per axis kind across the files:
 //   time               sample instants (/time; a trace's own time)
+//   valid_time         the leading samples of /time a flagged run's circuit reached
+//                      ("time|valid_time": time when the circuit spans all of /time)
 //   asperity           asperities of a realisation, or of all realisations in turn
 //   summit             summits drawn, all realisations in turn
 //   realisation        realisations (coordinate: their ids where the file has them)
@@ -54,16 +56,16 @@ constexpr std::array TERMS{
     Term{"/asperity/v", "m/s", "asperity tangential velocity", "asperity time"},
     Term{"/asperity/friction", "N", "tangential force the asperity transmits", "asperity time"},
     Term{"/asperity/x0", "m", "imposed drive displacement (Model 1)", "asperity time"},
-    Term{"/asperity/current", "A", "element current", "asperity time"},
-    Term{"/asperity/charge", "C", "element charge", "asperity time"},
+    Term{"/asperity/current", "A", "element current", "asperity time|valid_time"},
+    Term{"/asperity/charge", "C", "element charge", "asperity time|valid_time"},
     Term{"/asperity/natural_frequency", "Hz", "asperity natural frequency", "asperity"},
     Term{"/asperity/slip_fraction", "1", "fraction of the analysed samples the asperity slides", "asperity"},
     Term{"/asperity/max_x_over_l", "1", "largest displacement over the element length", "asperity"},
     Term{"/asperity/rms_velocity", "m/s", "rms asperity velocity", "asperity"},
     Term{"/asperity/solver_steps", "1", "integrator steps taken", "asperity"},
-    Term{"/circuit/voltage", "V", "load voltage", "time"},
-    Term{"/circuit/charge", "C", "charge delivered to the load resistor", "time"},
-    Term{"/circuit/measured_voltage", "V", "load voltage with measurement noise", "time"},
+    Term{"/circuit/voltage", "V", "load voltage", "time|valid_time"},
+    Term{"/circuit/charge", "C", "charge delivered to the load resistor", "time|valid_time"},
+    Term{"/circuit/measured_voltage", "V", "load voltage with measurement noise", "time|valid_time"},
     Term{"/events/time", "s", "event time", "event"},
     Term{"/events/asperity", "1", "index of the asperity", "event"},
     Term{"/events/kind", "1", "event kind", "event"},

@@ -206,6 +206,8 @@ def main():
         # Run files: a paper study (spectra, ESPRIT lines, spectrogram, element currents)
         # and a random surface's realisation (its contact population under /surface).
         run(binary, "run", study("paper/fig6_vb1_l50.toml"), "-o", out("run.h5"), cwd=work)
+        # Its k = 25 N/m asperity reaches l: the run is flagged and its circuit stops early.
+        run(binary, "run", study("paper/fig6_vb1.toml"), "-o", out("flagged.h5"), cwd=work)
         run(binary, "run", study("surfaces/gw_vb10.toml"), "--realisation", "3", "-o", out("random.h5"), cwd=work)
         run(binary, "circuit", out("run.h5"), "-R", "1e6", "-o", out("circuit.h5"), cwd=work)
         run(binary, "spectrum", out("run.h5"), "--settings", study("paper/fig6_vb1_l50.toml"), "-o", out("spectrum.h5"),
@@ -230,7 +232,7 @@ def main():
         run(binary, "invert", out("record.csv"), "--known", out("device.toml"), "--bank", out("bank.h5"),
             "-o", out("inverse.h5"), cwd=work)
 
-        files = ["run.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "bank.h5",
+        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "bank.h5",
                  "inverse.h5"]
         for name in files:
             check_every_group(out(name))
@@ -258,6 +260,13 @@ def main():
         expect_coordinate(r, "/spectrogram", "time", "/spectrogram/time")
         expect_coordinate(r, "/spectrogram", "frequency", "/spectrogram/frequency")
         expect_dims(out("random.h5"), "/surface/summits", "height_m", ("summit",))
+        # A flagged run's circuit spans the leading samples of /time only: its own axis.
+        f = out("flagged.h5")
+        expect_dims(f, "/circuit", "voltage", ("valid_time",))
+        expect_dims(f, "/asperity", "current", ("asperity", "valid_time"))
+        expect_dims(f, "/asperity", "x", ("asperity", "time"))
+        with h5py.File(f, "r") as h:
+            check(h["circuit/voltage"].shape[0] < h["time"].shape[0], "flagged.h5: the circuit did not stop early")
 
         c = out("circuit.h5")
         expect_coordinate(c, "/", "time", "/time")
