@@ -3,7 +3,8 @@
 // (That whole files open in xarray is Io.OutputsOpenInXarray.)
 #include <gtest/gtest.h>
 
-#include <H5DSpublic.h>
+#include <hdf5.h>
+#include <H5DSpublic.h>  // after hdf5.h, which it assumes
 
 #include <filesystem>
 #include <map>
