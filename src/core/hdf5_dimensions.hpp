@@ -1,9 +1,9 @@
 #pragma once
 //! Named axes for HDF5 datasets, the netCDF-4 way: HDF5 dimension scales (H5DS, the
 //! high-level library) plus CF `units` and `long_name` attributes, so netCDF readers
-//! (xarray with h5netcdf, netCDF-C, MATLAB's ncread) open stengmc's files as labelled
-//! arrays without knowing their layout (netCDF-4 format specification, "Dimensions and
-//! dimension scales"; CF conventions 1.10, sections 3.1-3.2).
+//! (xarray with h5netcdf, tested; netCDF-C and MATLAB read the same layout) open
+//! stengmc's files as labelled arrays without knowing their layout (netCDF-4 format
+//! specification, "Dimensions and dimension scales"; CF conventions 1.10, 3.1-3.2).
 #include <hdf5.h>
 
 #include <string>
