@@ -22,7 +22,10 @@ What is fingerprinted, per output file:
 - every attribute that is a number, written as its exact value (repr round-trips a
   double). Text attributes (study text, paths, titles, method names) are not digested;
 - except the attributes named in EXCLUDED_ATTRIBUTES / EXCLUDED_ATTRIBUTE_PATTERNS:
-  what records when, where or how fast a file was made rather than what it computed.
+  what records when, where or how fast a file was made rather than what it computed;
+- the dimension scales (HDF5 H5DS, what makes the files netCDF-4): each dataset's
+  DIMENSION_LIST as the paths of the scales of its axes, so a relabelled axis shows.
+  REFERENCE_LIST, its inverse kept on each scale, adds nothing and is skipped.
 
 The digests are bitwise, so they hold for one platform (the reference is Debian 12,
 x86-64, its GCC, FFTW and libm); the file's header records where it was generated.
@@ -115,10 +118,20 @@ def dataset_line(path, dataset):
     return line
 
 
+#: Dimension-scale bookkeeping digested separately (dimension_line) or not at all.
+SCALE_ATTRIBUTES = {"DIMENSION_LIST", "REFERENCE_LIST"}
+
+
+def dimension_line(path, dataset):
+    """The scales attached to each axis of a dataset, as paths: "a|b" per axis, space-separated."""
+    axes = ["|".join(dataset.file[ref].name for ref in refs) for refs in dataset.attrs["DIMENSION_LIST"]]
+    return f"{path}@DIMENSION_LIST dims {' '.join(axes)}"
+
+
 def attribute_lines(path, attributes, include_text=False):
     lines = []
     for name in sorted(attributes):
-        if excluded(name):
+        if excluded(name) or name in SCALE_ATTRIBUTES:
             continue
         value = attributes[name]
         array = np.asarray(value)
@@ -147,6 +160,8 @@ def file_lines(h5_path, include_text=False):
             path = "/" + name
             if isinstance(obj, h5py.Dataset):
                 lines.append(dataset_line(path, obj))
+                if "DIMENSION_LIST" in obj.attrs:
+                    lines.append(dimension_line(path, obj))
             lines.extend(attribute_lines(path, obj.attrs, include_text))
 
         f.visititems(visit)

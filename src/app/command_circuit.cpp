@@ -16,6 +16,7 @@
 #include "io/run_file.hpp"
 #include "tribology/domain_check.hpp"
 #include "tribology/sampled_motion.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc::app {
 
@@ -76,20 +77,20 @@ void run(const CircuitOptions& options) {
   Progress progress("circuit", input.times_s.size());
   const CircuitResult circuit = solve_circuit_streamed(input.elements, pointers, input.times_s, options.params, &progress);
 
-  Hdf5Writer file(options.out);
+  Hdf5Writer file(options.out, describe_output);
   Provenance provenance;
   provenance.file_type = "stengmc-circuit";
   provenance.input_file = options.input;
   write_provenance(file, provenance);
   file.attribute("/", "interpolation", interpolation_name(interpolation));
-  file.write("/time", input.times_s, "s");
-  file.write("/asperity/x", input.x_m, "m");
+  file.write("/time", input.times_s);
+  file.write("/asperity/x", input.x_m);
   // Left limits, like the currents: with linear interpolation x' of the interval that
   // ends at the sample (a PWL source's slope there), which is what produced V at t_j.
   std::vector<std::vector<double>> v(input.x_m.size());
   for (std::size_t i = 0; i < input.x_m.size(); ++i)
     for (double t : input.times_s) v[i].push_back(motions[i]->at(t, Side::left).v_m_per_s);
-  file.write("/asperity/v", v, "m/s");
+  file.write("/asperity/v", v);
   write_elements(file, input.elements);
   write_circuit(file, circuit, options.params);
   file.commit();

@@ -15,6 +15,7 @@
 #include "pipeline/analyse_spectra.hpp"
 #include "pipeline/slip_fraction.hpp"
 #include "pipeline/spectral_summary.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc::app {
 
@@ -75,7 +76,7 @@ void run(const SpectrumOptions& options) {
   } catch (const InputError& e) {
     throw InputError(options.input + ": " + e.what());
   }
-  Hdf5Writer file(options.out);
+  Hdf5Writer file(options.out, describe_output);
   Provenance provenance;
   provenance.file_type = "stengmc-spectrum";
   provenance.input_file = options.input;

@@ -48,7 +48,7 @@ void check_finite(const std::string& path, std::span<const double> values) {
 
 // ---------------------------------------------------------------- Hdf5Writer
 
-Hdf5Writer::Hdf5Writer(std::string path) : path_(std::move(path)) {
+Hdf5Writer::Hdf5Writer(std::string path, Describer describe) : path_(std::move(path)), describe_(std::move(describe)) {
   H5::Exception::dontPrint();
   const auto parent = std::filesystem::path(path_).parent_path();
   std::error_code ignored;
@@ -174,6 +174,46 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
   });
 }
 
+DatasetDescription Hdf5Writer::described(const std::string& path, std::optional<std::string_view> units) {
+  if (!describe_) throw Error(path_ + ": " + path + ": this file has no vocabulary to describe its datasets");
+  DatasetDescription description = describe_(path);
+  if (units) description.units = *units;
+  described_.push_back({path, description});
+  return description;
+}
+
+void Hdf5Writer::set_long_name(const std::string& path, const std::string& long_name) { attribute(path, "long_name", long_name); }
+
+void Hdf5Writer::write(const std::string& path, std::span<const double> values) {
+  const DatasetDescription d = described(path);
+  write(path, values, d.units);
+  set_long_name(path, d.long_name);
+}
+
+void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows) {
+  const DatasetDescription d = described(path);
+  write(path, rows, d.units);
+  set_long_name(path, d.long_name);
+}
+
+void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values) {
+  const DatasetDescription d = described(path);
+  write(path, values, d.units);
+  set_long_name(path, d.long_name);
+}
+
+void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values) {
+  const DatasetDescription d = described(path);
+  write(path, values, d.units);
+  set_long_name(path, d.long_name);
+}
+
+void Hdf5Writer::write_with_units(const std::string& path, std::span<const double> values, std::string_view units) {
+  const DatasetDescription d = described(path, units);
+  write(path, values, d.units);
+  set_long_name(path, d.long_name);
+}
+
 void Hdf5Writer::group(const std::string& path) {
   guarded("cannot create group " + path, [&] { group_for(path + "/"); });
 }
@@ -239,6 +279,7 @@ void Hdf5Writer::commit() {
   std::string image;
   guarded("cannot finish the file", [&] {
     const hid_t id = file_->getId();
+    attach_dimension_scales(id, path_, described_);
     if (H5Fflush(id, H5F_SCOPE_LOCAL) < 0) throw H5::FileIException("H5Fflush", "cannot flush the file");
     const ssize_t size = H5Fget_file_image(id, nullptr, 0);
     if (size < 0) throw H5::FileIException("H5Fget_file_image", "cannot take the file's image");

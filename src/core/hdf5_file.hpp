@@ -4,6 +4,7 @@
 #include <H5Cpp.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -11,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/hdf5_dimensions.hpp"
 #include "core/temporary_file.hpp"
 
 namespace stengmc {
@@ -22,9 +24,16 @@ namespace stengmc {
 //! (core/temporary_file.hpp), fsyncs it and renames it into place, so a killed or failed run
 //! never leaves a half-written result under the final name, and a failed write (a full
 //! disk) is reported with the system's reason ("No space left on device").
+//!
+//! A writer given a `Describer` (the vocabulary of a family of files: io/output_vocabulary)
+//! also takes each dataset's units, long_name and axis names from it, and commit() attaches
+//! the axes to dimension scales (core/hdf5_dimensions.hpp): the file is then netCDF-4 too.
 class Hdf5Writer {
  public:
-  explicit Hdf5Writer(std::string path);
+  //! The description of the dataset at a path; throws Error for a path it does not know.
+  using Describer = std::function<DatasetDescription(const std::string& path)>;
+
+  explicit Hdf5Writer(std::string path, Describer describe = {});
   ~Hdf5Writer();
   Hdf5Writer(const Hdf5Writer&) = delete;
   Hdf5Writer& operator=(const Hdf5Writer&) = delete;
@@ -37,6 +46,14 @@ class Hdf5Writer {
   void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units);
   //! 1-D dataset of variable-length strings.
   void write(const std::string& path, const std::vector<std::string>& values, std::string_view units);
+
+  //! The same, described by the Describer: units, long_name and named axes.
+  void write(const std::string& path, std::span<const double> values);
+  void write(const std::string& path, const std::vector<std::vector<double>>& rows);
+  void write(const std::string& path, std::span<const std::int64_t> values);
+  void write(const std::string& path, const std::vector<std::string>& values);
+  //! Described, but with a unit the Describer cannot know (one that depends on the data).
+  void write_with_units(const std::string& path, std::span<const double> values, std::string_view units);
 
   //! Creates the group (and its parents) if it does not exist yet.
   void group(const std::string& path);
@@ -54,6 +71,10 @@ class Hdf5Writer {
  private:
   H5::Group group_for(const std::string& dataset_path);
   void set_units(H5::DataSet& dataset, std::string_view units);
+  //! The Describer's description of `path`, remembered for commit(); its units unless
+  //! `units` is given.
+  DatasetDescription described(const std::string& path, std::optional<std::string_view> units = std::nullopt);
+  void set_long_name(const std::string& path, const std::string& long_name);
   //! Runs HDF5 calls on the file; their failures become Error naming the output.
   template <class Call>
   void guarded(const std::string& what, Call call);
@@ -61,6 +82,8 @@ class Hdf5Writer {
   std::string path_;
   std::unique_ptr<TemporaryFile> temporary_;
   std::unique_ptr<H5::H5File> file_;
+  Describer describe_;
+  std::vector<DescribedDataset> described_;
 };
 
 //! Reads datasets and attributes from an existing file, with errors naming the file.

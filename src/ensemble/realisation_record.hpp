@@ -36,10 +36,12 @@ enum class Scalar : std::size_t {
 
 inline constexpr std::size_t SCALAR_COUNT = static_cast<std::size_t>(Scalar::count_);
 
-//! Name (as in files and [ensemble] target_statistic) and unit of each scalar.
+//! Name (as in files and [ensemble] target_statistic), unit and meaning (the files'
+//! `long_name`) of each scalar.
 struct ScalarInfo {
   std::string_view name;
   std::string_view unit;
+  std::string_view long_name;
 };
 const ScalarInfo& scalar_info(Scalar scalar);
 //! The scalar called `name`, or false.

@@ -7,6 +7,7 @@
 #include "inverse/naive_count.hpp"
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc {
 
@@ -70,38 +71,38 @@ void write_records(Hdf5Writer& f, const std::vector<CalibrationSample>& samples,
     evidence.insert(evidence.end(), s.log_evidence.begin(), s.log_evidence.end());
     order_offset.push_back(static_cast<std::int64_t>(orders.size()));
   }
-  f.write("/records/realisation", ids, "index");
-  f.write("/records/valid", valid, "1");
-  f.write("/records/true_count", true_count, "1");
-  f.write("/records/count", count, "1");
-  f.write("/records/snr_db", snr, "dB");
-  f.write("/records/law_first", first, "median [N/m] (lognormal) or shape [-]");
-  f.write("/records/law_second", second, "sigma_log [-] (lognormal) or scale [N/m]");
-  f.write("/records/true_median", true_median, "N/m");
-  f.write("/records/median", median, "N/m");
-  f.write("/records/true_sd_log", true_sd, "1");
-  f.write("/records/sd_log", sd, "1");
-  f.write("/records/noise_sigma", noise, "V");
-  f.write("/records/residual_sigma", residual, "V");
-  f.write("/records/band_power_ratio", band, "1");
-  f.write("/records/snr_estimate_db", snr_estimate, "dB");
-  f.write("/records/seconds", seconds, "s");
-  f.write("/records/naive_count", naive, "1");
-  f.write("/records/naive_counts", naive_counts, "1");
-  f.write("/records/true_stiffness", true_k, "N/m");
-  f.write("/records/true_offset", true_offset, "index");
-  f.write("/records/stiffness", k, "N/m");
-  f.write("/records/log_stiffness_se", se, "1");
-  f.write("/records/estimate_offset", estimate_offset, "index");
-  f.write("/records/orders", orders, "1");
-  f.write("/records/log_evidence", evidence, "1");
-  f.write("/records/order_offset", order_offset, "index");
+  f.write("/records/realisation", ids);
+  f.write("/records/valid", valid);
+  f.write("/records/true_count", true_count);
+  f.write("/records/count", count);
+  f.write("/records/snr_db", snr);
+  f.write("/records/law_first", first);
+  f.write("/records/law_second", second);
+  f.write("/records/true_median", true_median);
+  f.write("/records/median", median);
+  f.write("/records/true_sd_log", true_sd);
+  f.write("/records/sd_log", sd);
+  f.write("/records/noise_sigma", noise);
+  f.write("/records/residual_sigma", residual);
+  f.write("/records/band_power_ratio", band);
+  f.write("/records/snr_estimate_db", snr_estimate);
+  f.write("/records/seconds", seconds);
+  f.write("/records/naive_count", naive);
+  f.write("/records/naive_counts", naive_counts);
+  f.write("/records/true_stiffness", true_k);
+  f.write("/records/true_offset", true_offset);
+  f.write("/records/stiffness", k);
+  f.write("/records/log_stiffness_se", se);
+  f.write("/records/estimate_offset", estimate_offset);
+  f.write("/records/orders", orders);
+  f.write("/records/log_evidence", evidence);
+  f.write("/records/order_offset", order_offset);
 }
 
 }  // namespace
 
 void write_calibration_bank(const std::string& path, const CalibrationBank& bank) {
-  Hdf5Writer f(path);
+  Hdf5Writer f(path, describe_output);
   write_provenance(f, {.file_type = FILE_TYPE,
                        .input_file = bank.device_study_file,
                        .input_text = bank.device_study_text,
@@ -124,11 +125,11 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
   f.attribute("/", "threads", static_cast<std::int64_t>(bank.threads));
 
   const AtomTableData& a = bank.atoms;
-  f.write("/atoms/heads", rows_of(a.heads, a.head_samples), "V");
-  f.write("/atoms/head_slopes", rows_of(a.head_slopes, a.head_samples), "V/s");
-  f.write("/atoms/tail_shift_s", a.tail_shift_s, "s");
-  f.write("/atoms/tail_phase_rad", a.tail_phase_rad, "rad");
-  f.write("/atoms/tail_fit_error", a.tail_fit_error, "1");
+  f.write("/atoms/heads", rows_of(a.heads, a.head_samples));
+  f.write("/atoms/head_slopes", rows_of(a.head_slopes, a.head_samples));
+  f.write("/atoms/tail_shift_s", a.tail_shift_s);
+  f.write("/atoms/tail_phase_rad", a.tail_phase_rad);
+  f.write("/atoms/tail_fit_error", a.tail_fit_error);
   f.attribute("/atoms", "min_stiffness_n_per_m", a.min_stiffness_n_per_m);
   f.attribute("/atoms", "max_stiffness_n_per_m", a.max_stiffness_n_per_m);
   f.attribute("/atoms", "head_samples", static_cast<std::int64_t>(a.head_samples));
@@ -140,10 +141,10 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
   f.attribute("/atoms", "checks", static_cast<std::int64_t>(a.settings.checks));
 
   const CalibrationMaps& m = bank.maps;
-  f.write("/maps/confusion", m.confusion, "1");
-  f.write("/maps/median_score_quantile", m.median_score_quantile, "1");
-  f.write("/maps/sd_score_quantile", m.sd_score_quantile, "1");
-  f.write("/maps/naive_thresholds", naive_count_thresholds(), "x local noise floor");
+  f.write("/maps/confusion", m.confusion);
+  f.write("/maps/median_score_quantile", m.median_score_quantile);
+  f.write("/maps/sd_score_quantile", m.sd_score_quantile);
+  f.write("/maps/naive_thresholds", naive_count_thresholds());
   f.attribute("/maps", "count_min", static_cast<std::int64_t>(m.count_min));
   f.attribute("/maps", "count_max", static_cast<std::int64_t>(m.count_max));
   f.attribute("/maps", "line_error_scale", m.line_error_scale);

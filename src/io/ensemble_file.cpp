@@ -5,6 +5,7 @@
 
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc {
 
@@ -15,13 +16,13 @@ void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoin
   if (e.sweep.empty()) return;
   std::vector<std::string> names;
   for (const SweepAxis& axis : e.sweep) names.push_back(axis.parameter);
-  f.write("/grid/parameter", names, "text");
+  f.write("/grid/parameter", names);
   std::vector<std::vector<double>> values;
   for (const GridPoint& point : grid) {
     values.emplace_back();
     for (const ParameterOverride& o : point.overrides) values.back().push_back(o.value);
   }
-  f.write("/grid/values", values, "as each parameter");
+  f.write("/grid/values", values);
 }
 
 void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
@@ -37,22 +38,22 @@ void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
       offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
       records.push_back(&r);
     }
-  f.write("/realisations/grid_point", points, "index");
-  f.write("/realisations/realisation", ids, "index");
-  f.write("/realisations/valid", valid, "1");
-  f.write("/realisations/failure", failures, "text");
-  f.write("/realisations/asperity_offset", offsets, "index");
+  f.write("/realisations/grid_point", points);
+  f.write("/realisations/realisation", ids);
+  f.write("/realisations/valid", valid);
+  f.write("/realisations/failure", failures);
+  f.write("/realisations/asperity_offset", offsets);
   for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
     std::vector<double> values;
     for (const RealisationRecord* r : records) values.push_back(r->scalars[k]);
     const ScalarInfo& info = scalar_info(static_cast<Scalar>(k));
-    f.write("/realisations/" + std::string(info.name), values, info.unit);
+    f.write("/realisations/" + std::string(info.name), values);
   }
   for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
     std::vector<double> values;
     for (const RealisationRecord* r : records) values.insert(values.end(), r->asperities[c].begin(), r->asperities[c].end());
     const ScalarInfo& info = column_info(static_cast<AsperityColumn>(c));
-    f.write("/asperities/" + std::string(info.name), values, info.unit);
+    f.write("/asperities/" + std::string(info.name), values);
   }
 }
 
@@ -72,8 +73,8 @@ void write_draws(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoi
       }
       rows.push_back(std::move(row));
     }
-  f.write("/draws/parameter", names, "text");
-  f.write("/draws/values", rows, "as each parameter");
+  f.write("/draws/parameter", names);
+  f.write("/draws/values", rows);
 }
 
 void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
@@ -82,16 +83,16 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
       if (r.time_s.empty()) continue;
       const std::string base = grid.size() == 1 ? "/traces" : "/traces/point_" + std::to_string(g);
       const std::string group = base + "/realisation_" + std::to_string(r.realisation);
-      f.write(group + "/time", r.time_s, "s");
-      f.write(group + "/voltage", r.voltage_v, "V");
-      f.write(group + "/charge", r.charge_c, "C");
-      if (!r.measured_voltage_v.empty()) f.write(group + "/measured_voltage", r.measured_voltage_v, "V");
+      f.write(group + "/time", r.time_s);
+      f.write(group + "/voltage", r.voltage_v);
+      f.write(group + "/charge", r.charge_c);
+      if (!r.measured_voltage_v.empty()) f.write(group + "/measured_voltage", r.measured_voltage_v);
     }
 }
 
 //! One interval per grid point, as datasets <name>, <name>_low, <name>_high.
-void write_intervals(Hdf5Writer& f, const std::string& group, const std::string& name, std::string_view unit,
-                     const std::vector<GridPoint>& grid, const std::function<const Interval&(const GridPoint&)>& pick) {
+void write_intervals(Hdf5Writer& f, const std::string& group, const std::string& name, const std::vector<GridPoint>& grid,
+                     const std::function<const Interval&(const GridPoint&)>& pick) {
   std::vector<double> estimate, low, high;
   std::vector<std::int64_t> known;
   std::vector<std::string> methods;
@@ -103,11 +104,11 @@ void write_intervals(Hdf5Writer& f, const std::string& group, const std::string&
     known.push_back(i.known ? 1 : 0);
     methods.push_back(i.method);
   }
-  f.write(group + "/" + name, estimate, unit);
-  f.write(group + "/" + name + "_low", low, unit);
-  f.write(group + "/" + name + "_high", high, unit);
-  f.write(group + "/" + name + "_known", known, "1");
-  f.write(group + "/" + name + "_method", methods, "text");
+  f.write(group + "/" + name, estimate);
+  f.write(group + "/" + name + "_low", low);
+  f.write(group + "/" + name + "_high", high);
+  f.write(group + "/" + name + "_known", known);
+  f.write(group + "/" + name + "_method", methods);
 }
 
 void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
@@ -122,19 +123,19 @@ void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
       min.push_back(v.min);
       max.push_back(v.max);
     }
-    f.write(g + "/count", count, "1");
-    f.write(g + "/min", min, info.unit);
-    f.write(g + "/max", max, info.unit);
-    write_intervals(f, g, "mean", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
-    write_intervals(f, g, "std", info.unit, grid,
+    f.write(g + "/count", count);
+    f.write(g + "/min", min);
+    f.write(g + "/max", max);
+    write_intervals(f, g, "mean", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
+    write_intervals(f, g, "std", grid,
                     [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].standard_deviation; });
-    write_intervals(f, g, "median", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
-    write_intervals(f, g, "p05", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
-    write_intervals(f, g, "p95", info.unit, grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
+    write_intervals(f, g, "median", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
+    write_intervals(f, g, "p05", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
+    write_intervals(f, g, "p95", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
   }
-  write_intervals(f, "/summary/pooled", "fft_ratio", "1", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
-  write_intervals(f, "/summary/pooled", "hr_ratio", "1", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
-  write_intervals(f, "/summary/pooled", "valid_fraction", "1", grid,
+  write_intervals(f, "/summary/pooled", "fft_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
+  write_intervals(f, "/summary/pooled", "hr_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
+  write_intervals(f, "/summary/pooled", "valid_fraction", grid,
                   [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
   std::vector<double> width;
   std::vector<std::int64_t> met;
@@ -142,14 +143,14 @@ void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
     width.push_back(point.run.target_half_width_reached);
     met.push_back(point.run.target_met ? 1 : 0);
   }
-  f.write("/summary/target/half_width", width, "as the target statistic");
-  f.write("/summary/target/met", met, "1");
+  f.write("/summary/target/half_width", width);
+  f.write("/summary/target/met", met);
 }
 
 }  // namespace
 
 void write_ensemble_file(const std::string& path, const StudyFile& base, const std::vector<GridPoint>& grid) {
-  Hdf5Writer file(path);
+  Hdf5Writer file(path, describe_output);
   write_provenance(file, {.file_type = "stengmc-ensemble",
                           .input_file = base.file,
                           .input_text = base.text,

@@ -68,6 +68,8 @@ herr_t read_attribute(hid_t object, const char* name, const H5A_info_t*, void*) 
       if (bytes > 0 && bytes < (1 << 16)) {
         std::vector<char> buffer(bytes * static_cast<std::size_t>(count));
         status = H5Aread(attribute, type, buffer.data());
+        // Variable-length data (a dimension scale's DIMENSION_LIST) is allocated by the read.
+        if (status >= 0 && H5Tdetect_class(type, H5T_VLEN) > 0) H5Dvlen_reclaim(type, space, H5P_DEFAULT, buffer.data());
       }
     }
   }

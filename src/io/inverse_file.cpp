@@ -4,6 +4,7 @@
 
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc {
 
@@ -39,26 +40,26 @@ void write_laws(Hdf5Writer& f, const std::string& group, const std::vector<std::
       sd.push_back(law.sd_log);
     }
   }
-  f.write(group + "/record", record, "index");
-  f.write(group + "/family", family, "text");
-  f.write(group + "/fitted", fitted, "1");
-  f.write(group + "/first", first, "median [N/m] (lognormal) or shape [-]");
-  f.write(group + "/first_low", first_low, "as first");
-  f.write(group + "/first_high", first_high, "as first");
-  f.write(group + "/second", second, "sigma_log [-] (lognormal) or scale [N/m]");
-  f.write(group + "/second_low", second_low, "as second");
-  f.write(group + "/second_high", second_high, "as second");
-  f.write(group + "/aic", aic, "1");
-  f.write(group + "/delta_aic", delta, "1");
-  f.write(group + "/median", median, "N/m");
-  f.write(group + "/sd_log", sd, "1");
+  f.write(group + "/record", record);
+  f.write(group + "/family", family);
+  f.write(group + "/fitted", fitted);
+  f.write(group + "/first", first);
+  f.write(group + "/first_low", first_low);
+  f.write(group + "/first_high", first_high);
+  f.write(group + "/second", second);
+  f.write(group + "/second_low", second_low);
+  f.write(group + "/second_high", second_high);
+  f.write(group + "/aic", aic);
+  f.write(group + "/delta_aic", delta);
+  f.write(group + "/median", median);
+  f.write(group + "/sd_log", sd);
 }
 
 }  // namespace
 
 void write_inverse_file(const std::string& path, const InverseFileContext& context, const std::vector<Inversion>& inversions,
                         const std::vector<LawFit>& pooled) {
-  Hdf5Writer f(path);
+  Hdf5Writer f(path, describe_output);
   write_provenance(f, {.file_type = "stengmc-inverse",
                        .input_file = context.known_file,
                        .input_text = context.known_text,
@@ -126,48 +127,48 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
     intervals.push_back(c.population_intervals ? 1 : 0);
     laws.push_back(inv.laws);
   }
-  f.write("/inverse/records/name", names, "text");
-  f.write("/inverse/records/noise_sigma_v", noise, "V");
-  f.write("/inverse/records/residual_sigma_v", residual, "V");
-  f.write("/inverse/records/signal_to_noise_db", snr, "dB");
-  f.write("/inverse/records/band_power_ratio", band, "1");
-  f.write("/inverse/records/lines_outside_prior", outside, "1");
-  f.write("/inverse/records/seconds", seconds, "s");
-  f.write("/inverse/records/verdict", verdicts, "text");
-  f.write("/inverse/records/warnings", warnings, "text");
+  f.write("/inverse/records/name", names);
+  f.write("/inverse/records/noise_sigma_v", noise);
+  f.write("/inverse/records/residual_sigma_v", residual);
+  f.write("/inverse/records/signal_to_noise_db", snr);
+  f.write("/inverse/records/band_power_ratio", band);
+  f.write("/inverse/records/lines_outside_prior", outside);
+  f.write("/inverse/records/seconds", seconds);
+  f.write("/inverse/records/verdict", verdicts);
+  f.write("/inverse/records/warnings", warnings);
   std::vector<std::int64_t> counts;
   if (!inversions.empty())
     for (std::size_t n : inversions.front().calibrated.counts) counts.push_back(static_cast<std::int64_t>(n));
-  f.write("/inverse/count/counts", counts, "1");
-  f.write("/inverse/count/estimate", estimate, "1");
-  f.write("/inverse/count/interval_low", low, "1");
-  f.write("/inverse/count/interval_high", high, "1");
-  f.write("/inverse/count/naive_fft", naive, "1");
-  f.write("/inverse/count/probability", probability, "1");
-  f.write("/inverse/count/raw_probability", raw_probability, "1");
-  f.write("/inverse/lines/record", line_record, "index");
-  f.write("/inverse/lines/stiffness_n_per_m", k, "N/m");
-  f.write("/inverse/lines/stiffness_low", k_low, "N/m");
-  f.write("/inverse/lines/stiffness_high", k_high, "N/m");
-  f.write("/inverse/lines/log_stiffness_se", se, "1");
-  f.write("/inverse/lines/frequency_hz", frequency, "Hz");
-  f.write("/inverse/lines/amplitude_v", amplitude, "V");
-  f.write("/inverse/lines/nearest_separation_hz", separation, "Hz");
-  f.write("/inverse/lines/offset", offsets, "index");
-  f.write("/inverse/stiffness/median", median, "N/m");
-  f.write("/inverse/stiffness/median_low", median_low, "N/m");
-  f.write("/inverse/stiffness/median_high", median_high, "N/m");
-  f.write("/inverse/stiffness/sd_log", sd, "1");
-  f.write("/inverse/stiffness/sd_log_low", sd_low, "1");
-  f.write("/inverse/stiffness/sd_log_high", sd_high, "1");
-  f.write("/inverse/stiffness/intervals_calibrated", intervals, "1");
+  f.write("/inverse/count/counts", counts);
+  f.write("/inverse/count/estimate", estimate);
+  f.write("/inverse/count/interval_low", low);
+  f.write("/inverse/count/interval_high", high);
+  f.write("/inverse/count/naive_fft", naive);
+  f.write("/inverse/count/probability", probability);
+  f.write("/inverse/count/raw_probability", raw_probability);
+  f.write("/inverse/lines/record", line_record);
+  f.write("/inverse/lines/stiffness_n_per_m", k);
+  f.write("/inverse/lines/stiffness_low", k_low);
+  f.write("/inverse/lines/stiffness_high", k_high);
+  f.write("/inverse/lines/log_stiffness_se", se);
+  f.write("/inverse/lines/frequency_hz", frequency);
+  f.write("/inverse/lines/amplitude_v", amplitude);
+  f.write("/inverse/lines/nearest_separation_hz", separation);
+  f.write("/inverse/lines/offset", offsets);
+  f.write("/inverse/stiffness/median", median);
+  f.write("/inverse/stiffness/median_low", median_low);
+  f.write("/inverse/stiffness/median_high", median_high);
+  f.write("/inverse/stiffness/sd_log", sd);
+  f.write("/inverse/stiffness/sd_log_low", sd_low);
+  f.write("/inverse/stiffness/sd_log_high", sd_high);
+  f.write("/inverse/stiffness/intervals_calibrated", intervals);
   write_laws(f, "/inverse/stiffness/laws", laws);
   write_laws(f, "/inverse/pooled/laws", {pooled});
   for (std::size_t r = 0; r < inversions.size() && r < KEPT_TRACES; ++r) {
     const std::string g = "/inverse/traces/record_" + std::to_string(r);
-    f.write(g + "/time", context.times[r], "s");
-    f.write(g + "/voltage", context.voltages[r], "V");
-    f.write(g + "/model", inversions[r].model_v, "V");
+    f.write(g + "/time", context.times[r]);
+    f.write(g + "/voltage", context.voltages[r]);
+    f.write(g + "/model", inversions[r].model_v);
   }
   f.commit();
 }

@@ -44,65 +44,65 @@ void write_realisations(Hdf5Writer& f, const std::string& g, std::span<const Pop
                         std::span<const ValidityReport> reports, bool contact) {
   using P = const Population&;
   using R = const ValidityReport&;
-  f.write(g + "/realisations/realisation", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.realisation; }), "index");
-  f.write(g + "/realisations/summit_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.height_m.size(); }), "1");
-  f.write(g + "/realisations/asperity_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.asperities.size(); }), "1");
+  f.write(g + "/realisations/realisation", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.realisation; }));
+  f.write(g + "/realisations/summit_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.height_m.size(); }));
+  f.write(g + "/realisations/asperity_count", per_realisation<std::int64_t>(pops, reports, [](P p, R) { return p.asperities.size(); }));
   f.write(g + "/realisations/cannot_slip_model1_count",
-          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.cannot_slip_count; }), "1");
+          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.cannot_slip_count; }));
   f.write(g + "/realisations/near_length_model2_count",
-          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.near_length_count; }), "1");
+          per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.near_length_count; }));
   std::vector<std::string> warnings;
   for (const ValidityReport& r : reports) warnings.push_back(joined_warnings(r));
-  f.write(g + "/realisations/warnings", warnings, "text");
+  f.write(g + "/realisations/warnings", warnings);
   std::vector<std::int64_t> summit_offset{0}, asperity_offset{0};
   for (const Population& p : pops) {
     summit_offset.push_back(summit_offset.back() + static_cast<std::int64_t>(p.height_m.size()));
     asperity_offset.push_back(asperity_offset.back() + static_cast<std::int64_t>(p.asperities.size()));
   }
-  f.write(g + "/realisations/summit_offset", summit_offset, "index");
-  f.write(g + "/realisations/asperity_offset", asperity_offset, "index");
+  f.write(g + "/realisations/summit_offset", summit_offset);
+  f.write(g + "/realisations/asperity_offset", asperity_offset);
   if (!contact) return;
   auto c = [](P p) -> const PopulationContact& { return *p.contact; };
-  f.write(g + "/realisations/separation_m", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).separation_m; }), "m");
-  f.write(g + "/realisations/total_load_n", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).total_load_n; }), "N");
-  f.write(g + "/realisations/real_area_m2", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).real_area_m2; }), "m^2");
-  f.write(g + "/realisations/contact_density", per_realisation<double>(pops, reports, [](P, R r) { return r.contact_density; }), "1");
-  f.write(g + "/realisations/screening_estimate", per_realisation<double>(pops, reports, [](P, R r) { return r.screening_estimate; }), "1");
-  f.write(g + "/realisations/load_redistribution", per_realisation<double>(pops, reports, [](P, R r) { return r.load_redistribution; }), "1");
+  f.write(g + "/realisations/separation_m", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).separation_m; }));
+  f.write(g + "/realisations/total_load_n", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).total_load_n; }));
+  f.write(g + "/realisations/real_area_m2", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).real_area_m2; }));
+  f.write(g + "/realisations/contact_density", per_realisation<double>(pops, reports, [](P, R r) { return r.contact_density; }));
+  f.write(g + "/realisations/screening_estimate", per_realisation<double>(pops, reports, [](P, R r) { return r.screening_estimate; }));
+  f.write(g + "/realisations/load_redistribution", per_realisation<double>(pops, reports, [](P, R r) { return r.load_redistribution; }));
   f.write(g + "/realisations/interaction_rms_relative",
-          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.rms_relative; }), "1");
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.rms_relative; }));
   f.write(g + "/realisations/interaction_max_relative",
-          per_realisation<double>(pops, reports, [](P, R r) { return r.interaction_max_relative; }), "1");
-  f.write(g + "/realisations/overlapping_pairs", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.overlapping_pairs; }), "1");
-  f.write(g + "/realisations/independence_holds", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.independence_holds; }), "1");
+          per_realisation<double>(pops, reports, [](P, R r) { return r.interaction_max_relative; }));
+  f.write(g + "/realisations/overlapping_pairs", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.overlapping_pairs; }));
+  f.write(g + "/realisations/independence_holds", per_realisation<std::int64_t>(pops, reports, [](P, R r) { return r.independence_holds; }));
   f.write(g + "/realisations/interacting_iterations",
-          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_iterations; }), "1");
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_iterations; }));
   f.write(g + "/realisations/interacting_converged",
-          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_converged; }), "1");
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).interacting_converged; }));
   f.write(g + "/realisations/load_carried",
-          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).load_carried; }), "1");
+          per_realisation<std::int64_t>(pops, reports, [&](P p, R) { return c(p).load_carried; }));
   f.write(g + "/realisations/localisation_radius_m",
-          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.localisation_radius_m; }), "m");
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.localisation_radius_m; }));
   f.write(g + "/realisations/far_field_m",
-          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.far_field_m; }), "m");
+          per_realisation<double>(pops, reports, [&](P p, R) { return c(p).interaction.far_field_m; }));
 }
 
 void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Population> pops, bool contact, bool sampled) {
-  f.write(g + "/summits/height_m", concatenated(pops, [](const Population& p) { return &p.height_m; }), "m");
-  f.write(g + "/summits/x_m", concatenated(pops, [](const Population& p) { return &p.x_m; }), "m");
-  f.write(g + "/summits/y_m", concatenated(pops, [](const Population& p) { return &p.y_m; }), "m");
-  f.write(g + "/summits/drive_phase_rad", concatenated(pops, [](const Population& p) { return &p.drive_phase_rad; }), "rad");
-  f.write(g + "/summits/normal_load_n", concatenated(pops, [](const Population& p) { return &p.load_n; }), "N");
+  f.write(g + "/summits/height_m", concatenated(pops, [](const Population& p) { return &p.height_m; }));
+  f.write(g + "/summits/x_m", concatenated(pops, [](const Population& p) { return &p.x_m; }));
+  f.write(g + "/summits/y_m", concatenated(pops, [](const Population& p) { return &p.y_m; }));
+  f.write(g + "/summits/drive_phase_rad", concatenated(pops, [](const Population& p) { return &p.drive_phase_rad; }));
+  f.write(g + "/summits/normal_load_n", concatenated(pops, [](const Population& p) { return &p.load_n; }));
   if (sampled)
     f.write(g + "/summits/sampled_stiffness_n_per_m",
-            concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }), "N/m");
+            concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }));
   if (!contact) return;
-  f.write(g + "/summits/interference_m", concatenated(pops, [](const Population& p) { return &p.contact->interference_m; }), "m");
-  f.write(g + "/summits/patch_radius_m", concatenated(pops, [](const Population& p) { return &p.contact->patch_radius_m; }), "m");
+  f.write(g + "/summits/interference_m", concatenated(pops, [](const Population& p) { return &p.contact->interference_m; }));
+  f.write(g + "/summits/patch_radius_m", concatenated(pops, [](const Population& p) { return &p.contact->patch_radius_m; }));
   f.write(g + "/summits/extra_displacement_m",
-          concatenated(pops, [](const Population& p) { return &p.contact->interaction.extra_displacement_m; }), "m");
+          concatenated(pops, [](const Population& p) { return &p.contact->interaction.extra_displacement_m; }));
   f.write(g + "/summits/interaction_relative",
-          concatenated(pops, [](const Population& p) { return &p.contact->interaction.relative; }), "1");
+          concatenated(pops, [](const Population& p) { return &p.contact->interaction.relative; }));
 }
 
 void write_asperities(Hdf5Writer& f, const std::string& g, std::span<const Population> pops,
@@ -118,17 +118,17 @@ void write_asperities(Hdf5Writer& f, const std::string& g, std::span<const Popul
       deflection.push_back(reports[j].static_deflection_over_length[i]);
     }
   }
-  f.write(g + "/asperities/summit_index", summit_index, "index");
-  f.write(g + "/asperities/stiffness_n_per_m", asperity_column(pops, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
-  f.write(g + "/asperities/mass_kg", asperity_column(pops, [](const Asperity& a) { return a.mass_kg; }), "kg");
-  f.write(g + "/asperities/normal_load_n", asperity_column(pops, [](const Asperity& a) { return a.normal_load_n; }), "N");
-  f.write(g + "/asperities/height_m", asperity_column(pops, [](const Asperity& a) { return a.height_m; }), "m");
-  f.write(g + "/asperities/element_length_m", asperity_column(pops, [](const Asperity& a) { return a.element.length_m; }), "m");
-  f.write(g + "/asperities/element_width_m", asperity_column(pops, [](const Asperity& a) { return a.element.width_m; }), "m");
-  f.write(g + "/asperities/drive_phase_rad", asperity_column(pops, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
-  f.write(g + "/asperities/cannot_slip_model1", cannot_slip, "1");
-  f.write(g + "/asperities/static_deflection_over_length", deflection, "1");
-  f.write(g + "/asperities/near_length_model2", near_length, "1");
+  f.write(g + "/asperities/summit_index", summit_index);
+  f.write(g + "/asperities/stiffness_n_per_m", asperity_column(pops, [](const Asperity& a) { return a.stiffness_n_per_m; }));
+  f.write(g + "/asperities/mass_kg", asperity_column(pops, [](const Asperity& a) { return a.mass_kg; }));
+  f.write(g + "/asperities/normal_load_n", asperity_column(pops, [](const Asperity& a) { return a.normal_load_n; }));
+  f.write(g + "/asperities/height_m", asperity_column(pops, [](const Asperity& a) { return a.height_m; }));
+  f.write(g + "/asperities/element_length_m", asperity_column(pops, [](const Asperity& a) { return a.element.length_m; }));
+  f.write(g + "/asperities/element_width_m", asperity_column(pops, [](const Asperity& a) { return a.element.width_m; }));
+  f.write(g + "/asperities/drive_phase_rad", asperity_column(pops, [](const Asperity& a) { return a.drive_phase_rad; }));
+  f.write(g + "/asperities/cannot_slip_model1", cannot_slip);
+  f.write(g + "/asperities/static_deflection_over_length", deflection);
+  f.write(g + "/asperities/near_length_model2", near_length);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "core/column.hpp"
 #include "io/population_file.hpp"
 #include "io/spectrum_file.hpp"
+#include "io/output_vocabulary.hpp"
 
 namespace stengmc {
 
@@ -56,9 +57,9 @@ void write_events(Hdf5Writer& file, const RunResult& result) {
     asperity.push_back(static_cast<std::int64_t>(e.asperity));
     kinds.emplace_back(event_name(e.kind));
   }
-  file.write("/events/time", times, "s");
-  file.write("/events/asperity", asperity, "index");
-  file.write("/events/kind", kinds, "text");
+  file.write("/events/time", times);
+  file.write("/events/asperity", asperity);
+  file.write("/events/kind", kinds);
 }
 
 }  // namespace
@@ -78,17 +79,17 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
-  file.write("/asperity/sigma", column(elements, [](const StengElement& e) { return e.charge_density_c_per_m2; }), "C/m^2");
-  file.write("/asperity/d0", column(elements, [](const StengElement& e) { return e.effective_thickness_m; }), "m");
-  file.write("/asperity/w", column(elements, [](const StengElement& e) { return e.width_m; }), "m");
-  file.write("/asperity/l", column(elements, [](const StengElement& e) { return e.length_m; }), "m");
+  file.write("/asperity/sigma", column(elements, [](const StengElement& e) { return e.charge_density_c_per_m2; }));
+  file.write("/asperity/d0", column(elements, [](const StengElement& e) { return e.effective_thickness_m; }));
+  file.write("/asperity/w", column(elements, [](const StengElement& e) { return e.width_m; }));
+  file.write("/asperity/l", column(elements, [](const StengElement& e) { return e.length_m; }));
 }
 
 void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const CircuitParams& params, const OutputTraces& traces) {
-  file.write("/circuit/voltage", circuit.voltage_v, "V");
-  file.write("/circuit/charge", circuit.charge_c, "C");
-  if (traces.current) file.write("/asperity/current", circuit.current_a, "A");
-  if (traces.charge) file.write("/asperity/charge", circuit.element_charge_c, "C");
+  file.write("/circuit/voltage", circuit.voltage_v);
+  file.write("/circuit/charge", circuit.charge_c);
+  if (traces.current) file.write("/asperity/current", circuit.current_a);
+  if (traces.charge) file.write("/asperity/charge", circuit.element_charge_c);
   file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
   file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
   file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
@@ -96,7 +97,7 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
 }
 
 void write_run_file(const std::string& path, const Study& study, const RunResult& result, const RunSummary& summary) {
-  Hdf5Writer file(path);
+  Hdf5Writer file(path, describe_output);
   write_provenance(file, {.file_type = "stengmc-run",
                           .input_file = study.file,
                           .input_text = study.text,
@@ -111,43 +112,43 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.attribute("/", "duration_s", study.duration_s);
   file.attribute("/", "sample_rate_hz", study.sample_rate_hz);
 
-  file.write("/time", result.times_s, "s");
+  file.write("/time", result.times_s);
   write_model(file, study);
 
-  file.write("/asperity/k", column(study.asperities, [](const Asperity& a) { return a.stiffness_n_per_m; }), "N/m");
-  file.write("/asperity/m", column(study.asperities, [](const Asperity& a) { return a.mass_kg; }), "kg");
-  file.write("/asperity/N", column(study.asperities, [](const Asperity& a) { return a.normal_load_n; }), "N");
-  file.write("/asperity/h", column(study.asperities, [](const Asperity& a) { return a.height_m; }), "m");
-  file.write("/asperity/phi", column(study.asperities, [](const Asperity& a) { return a.drive_phase_rad; }), "rad");
+  file.write("/asperity/k", column(study.asperities, [](const Asperity& a) { return a.stiffness_n_per_m; }));
+  file.write("/asperity/m", column(study.asperities, [](const Asperity& a) { return a.mass_kg; }));
+  file.write("/asperity/N", column(study.asperities, [](const Asperity& a) { return a.normal_load_n; }));
+  file.write("/asperity/h", column(study.asperities, [](const Asperity& a) { return a.height_m; }));
+  file.write("/asperity/phi", column(study.asperities, [](const Asperity& a) { return a.drive_phase_rad; }));
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);
 
   const OutputTraces& traces = study.traces;
-  if (traces.x) file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }), "m");
-  if (traces.v) file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }), "m/s");
+  if (traces.x) file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }));
+  if (traces.v) file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }));
   if (traces.friction)
-    file.write("/asperity/friction", column(result.trajectories, [](const Trajectory& t) { return t.friction_n; }), "N");
+    file.write("/asperity/friction", column(result.trajectories, [](const Trajectory& t) { return t.friction_n; }));
   if (traces.x0 && study.model == ModelKind::model1) {
     auto imposed = [&](const Asperity& a) {
       std::vector<double> row;
       for (double t : result.times_s) row.push_back(imposed_displacement(study.model1, a, t));
       return row;
     };
-    file.write("/asperity/x0", column(study.asperities, imposed), "m");
+    file.write("/asperity/x0", column(study.asperities, imposed));
   }
 
   const auto& s = summary.asperities;
-  file.write("/asperity/natural_frequency", column(s, [](const AsperitySummary& a) { return a.natural_frequency_hz; }), "Hz");
-  file.write("/asperity/slip_fraction", column(s, [](const AsperitySummary& a) { return a.slip_fraction; }), "1");
-  file.write("/asperity/max_x_over_l", column(s, [](const AsperitySummary& a) { return a.max_x_over_l; }), "1");
-  file.write("/asperity/rms_velocity", column(s, [](const AsperitySummary& a) { return a.rms_velocity_m_per_s; }), "m/s");
+  file.write("/asperity/natural_frequency", column(s, [](const AsperitySummary& a) { return a.natural_frequency_hz; }));
+  file.write("/asperity/slip_fraction", column(s, [](const AsperitySummary& a) { return a.slip_fraction; }));
+  file.write("/asperity/max_x_over_l", column(s, [](const AsperitySummary& a) { return a.max_x_over_l; }));
+  file.write("/asperity/rms_velocity", column(s, [](const AsperitySummary& a) { return a.rms_velocity_m_per_s; }));
   file.write("/asperity/solver_steps",
-             column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }), "1");
+             column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }));
 
   write_circuit(file, result.circuit, study.circuit, traces);
   if (!result.measured_voltage_v.empty()) {
-    file.write("/circuit/measured_voltage", result.measured_voltage_v, "V");
+    file.write("/circuit/measured_voltage", result.measured_voltage_v);
     file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);
     file.attribute("/circuit/measured_voltage", "snr_db", study.noise->snr_db);
   }

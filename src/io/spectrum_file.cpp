@@ -14,10 +14,10 @@ void write_identifiability(Hdf5Writer& file, const std::string& group, const Ide
   std::vector<std::int64_t> identified, matched;
   for (bool b : id.identified) identified.push_back(b ? 1 : 0);
   for (int m : id.matched_line) matched.push_back(m);
-  file.write(group + "/identified", identified, "1");
-  file.write(group + "/matched_line", matched, "index");
-  file.write(group + "/frequency_error", id.frequency_error_hz, "Hz");
-  file.write(group + "/amplitude", id.amplitude, "V");
+  file.write(group + "/identified", identified);
+  file.write(group + "/matched_line", matched);
+  file.write(group + "/frequency_error", id.frequency_error_hz);
+  file.write(group + "/amplitude", id.amplitude);
   file.attribute(group, "n_sliding", static_cast<std::int64_t>(id.n_sliding));
   file.attribute(group, "n_detected", static_cast<std::int64_t>(id.n_detected));
   file.attribute(group, "n_identifiable", static_cast<std::int64_t>(id.n_identifiable));
@@ -27,9 +27,9 @@ void write_identifiability(Hdf5Writer& file, const std::string& group, const Ide
 }  // namespace
 
 void write_spectra(Hdf5Writer& file, const SpectralResult& result, const SpectrumSettings& settings) {
-  file.write("/spectrum/frequency", result.voltage.frequency_hz, "Hz");
-  file.write("/spectrum/voltage", result.voltage.amplitude, "V");
-  if (!result.current_amplitude.empty()) file.write("/spectrum/current", result.current_amplitude, "A");
+  file.write("/spectrum/frequency", result.voltage.frequency_hz);
+  file.write("/spectrum/voltage", result.voltage.amplitude);
+  if (!result.current_amplitude.empty()) file.write("/spectrum/current", result.current_amplitude);
   file.attribute("/spectrum", "window", window_name(settings.window));
   file.attribute("/spectrum", "start_s", settings.start_s);
   file.attribute("/spectrum", "end_s", settings.end_s);
@@ -43,21 +43,21 @@ void write_spectra(Hdf5Writer& file, const SpectralResult& result, const Spectru
   file.attribute("/spectrum", "dynamic_range_db", settings.dynamic_range_db);
   file.attribute("/spectrum", "start_time_s", result.start_time_s);
   file.attribute("/spectrum", "mean_v", result.mean_v);
-  file.write("/spectrum/expected_frequency", result.expected_frequency_hz, "Hz");
+  file.write("/spectrum/expected_frequency", result.expected_frequency_hz);
   std::vector<std::int64_t> sliding;
   for (bool b : result.sliding) sliding.push_back(b ? 1 : 0);
-  file.write("/spectrum/sliding", sliding, "1");
+  file.write("/spectrum/sliding", sliding);
 
-  file.write("/spectrum/peaks/frequency", column(result.peaks, [](const Peak& p) { return p.frequency_hz; }), "Hz");
-  file.write("/spectrum/peaks/amplitude", column(result.peaks, [](const Peak& p) { return p.amplitude; }), "V");
-  file.write("/spectrum/peaks/prominence", column(result.peaks, [](const Peak& p) { return p.prominence; }), "V");
+  file.write("/spectrum/peaks/frequency", column(result.peaks, [](const Peak& p) { return p.frequency_hz; }));
+  file.write("/spectrum/peaks/amplitude", column(result.peaks, [](const Peak& p) { return p.amplitude; }));
+  file.write("/spectrum/peaks/prominence", column(result.peaks, [](const Peak& p) { return p.prominence; }));
   write_identifiability(file, "/spectrum/identifiability/fft", result.fft);
 
   if (result.high_resolution) {
-    file.write("/spectrum/lines/frequency", column(result.lines, [](const Line& l) { return l.frequency_hz; }), "Hz");
-    file.write("/spectrum/lines/amplitude", column(result.lines, [](const Line& l) { return l.amplitude; }), "V");
-    file.write("/spectrum/lines/damping", column(result.lines, [](const Line& l) { return l.damping_per_s; }), "1/s");
-    file.write("/spectrum/lines/phase", column(result.lines, [](const Line& l) { return l.phase_rad; }), "rad");
+    file.write("/spectrum/lines/frequency", column(result.lines, [](const Line& l) { return l.frequency_hz; }));
+    file.write("/spectrum/lines/amplitude", column(result.lines, [](const Line& l) { return l.amplitude; }));
+    file.write("/spectrum/lines/damping", column(result.lines, [](const Line& l) { return l.damping_per_s; }));
+    file.write("/spectrum/lines/phase", column(result.lines, [](const Line& l) { return l.phase_rad; }));
     file.attribute("/spectrum/lines", "order_criterion", order_criterion_name(settings.esprit.criterion));
     file.attribute("/spectrum/lines", "samples_used",
                    static_cast<std::int64_t>(std::min(result.samples, settings.esprit.max_samples)));
@@ -65,9 +65,9 @@ void write_spectra(Hdf5Writer& file, const SpectralResult& result, const Spectru
   }
   if (result.spectrogram) {
     const Spectrogram& s = *result.spectrogram;
-    file.write("/spectrogram/time", s.time_s, "s");
-    file.write("/spectrogram/frequency", s.frequency_hz, "Hz");
-    file.write("/spectrogram/voltage", s.amplitude, "V");
+    file.write("/spectrogram/time", s.time_s);
+    file.write("/spectrogram/frequency", s.frequency_hz);
+    file.write("/spectrogram/voltage", s.amplitude);
     file.attribute("/spectrogram", "window", window_name(settings.spectrogram->window));
     file.attribute("/spectrogram", "window_samples", static_cast<std::int64_t>(settings.spectrogram->window_samples));
     file.attribute("/spectrogram", "hop_samples", static_cast<std::int64_t>(settings.spectrogram->hop_samples));

@@ -1,0 +1,41 @@
+#pragma once
+//! Named axes for HDF5 datasets, the netCDF-4 way: HDF5 dimension scales (H5DS, the
+//! high-level library) plus CF `units` and `long_name` attributes, so netCDF readers
+//! (xarray with h5netcdf, tested; netCDF-C and MATLAB read the same layout) open
+//! stengmc's files as labelled arrays without knowing their layout (netCDF-4 format
+//! specification, "Dimensions and dimension scales"; CF conventions 1.10, 3.1-3.2).
+#include <hdf5.h>
+
+#include <string>
+#include <vector>
+
+namespace stengmc {
+
+//! What a dataset holds: its CF attributes and the name of each of its axes.
+struct DatasetDescription {
+  std::string units;                    //!< CF/UDUNITS unit ("s", "V", "N/m"; "1": dimensionless)
+  std::string long_name;                //!< what it is, in words
+  std::vector<std::string> dimensions;  //!< one name per axis, outermost first ("a|b": see below)
+};
+
+//! A dataset of the file and its description.
+struct DescribedDataset {
+  std::string path;
+  DatasetDescription description;
+};
+
+//! Attaches the axes of every dataset to dimension scales. netCDF's scoping rule finds
+//! the scale of dimension `d` for a dataset in group G: the dataset named `d` in G or in
+//! its nearest ancestor group, which must itself be described as a coordinate (1-D, its
+//! one dimension named `d`, the same length) and is made a scale; where there is none, a
+//! "pure" dimension is made in G: a 1-D dataset `d` with no values whose NAME says "This
+//! is a netCDF dimension but not a netCDF variable." (netCDF-C's marker, which h5netcdf
+//! and netCDF-C read as a dimension without a variable). A name "a|b" is dimension a
+//! where a's scale has the axis's length, else b: the circuit's traces of a run whose
+//! circuit stopped early span only the leading samples of /time. No written value is
+//! touched.
+//! Throws Error when a description contradicts the file (a wrong axis count or length, a
+//! dimension name taken by a dataset that is not its coordinate).
+void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets);
+
+}  // namespace stengmc

@@ -1,0 +1,334 @@
+#!/usr/bin/env python3
+"""Every kind of stengmc output opens in xarray (h5netcdf engine) as labelled arrays.
+
+    test_netcdf_outputs.py --binary build/src/stengmc [--work-dir DIR]
+
+Makes each kind of output file with the built binary from small studies (a run with
+spectra, lines and a spectrogram; a run of a random surface; `circuit`; `spectrum`;
+`surface`; a single-point ensemble; a sweep with draws; a calibration bank; an inverse
+result) and opens every group of each with
+    xarray.open_dataset(path, engine="h5netcdf", group=...)
+without any stengmc code. It asserts, against the files' own datasets read with h5py:
+- the named dimensions of the main datasets (V over "time", asperity traces over
+  ("asperity", "time"), ensemble tables over "realisation", spectra over "frequency"...);
+- that coordinates equal the datasets they label (/time, /spectrum/frequency, ids);
+- that every variable xarray shows has CF `units` and `long_name`, and holds exactly the
+  values h5py reads (no decoding alters them);
+- that every dataset of the file appears as a variable of its group, or is one of the
+  pure dimensions the writer made (so nothing is hidden).
+xarray and h5netcdf are declared dependencies (scripts/setup.sh): their absence fails.
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+import xarray as xr
+
+SOURCE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PURE_DIMENSION = b"This is a netCDF dimension but not a netCDF variable."
+
+FAILURES = []
+
+
+def check(condition, message):
+    if not condition:
+        FAILURES.append(message)
+
+
+def run(binary, *arguments, cwd):
+    done = subprocess.run([binary, *arguments], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if done.returncode != 0:
+        raise SystemExit(f"stengmc {' '.join(arguments)} failed ({done.returncode}):\n{done.stdout[-3000:]}")
+
+
+def groups_of(path):
+    names = ["/"]
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda name, node: names.append("/" + name) if isinstance(node, h5py.Group) else None)
+    return names
+
+
+def open_group(path, group):
+    return xr.open_dataset(path, engine="h5netcdf", group=group)
+
+
+def check_every_group(path):
+    """Every group opens; every variable is described and holds the file's values."""
+    with h5py.File(path, "r") as f:
+        for group in groups_of(path):
+            name = f"{os.path.basename(path)}:{group}"
+            try:
+                ds = open_group(path, group)
+            except Exception as e:  # noqa: BLE001: any failure to open is the finding
+                check(False, f"{name} does not open: {e!r}")
+                continue
+            with ds:
+                node = f[group]
+                for key, item in node.items():
+                    if not isinstance(item, h5py.Dataset):
+                        continue
+                    if PURE_DIMENSION in item.attrs.get("NAME", b""):
+                        check(key in ds.dims and ds.dims[key] == item.shape[0],
+                              f"{name}: pure dimension {key} is not a dimension of the group")
+                        continue
+                    check(key in ds.variables, f"{name}: dataset {key} is not a variable")
+                    if key not in ds.variables:
+                        continue
+                    variable = ds.variables[key]
+                    for attribute in ("units", "long_name"):
+                        check(isinstance(variable.attrs.get(attribute), str) and variable.attrs[attribute],
+                              f"{name}/{key}: no {attribute}")
+                    check(len(variable.dims) == item.ndim, f"{name}/{key}: {variable.dims} for a {item.ndim}-D dataset")
+                    stored = item[()]
+                    if item.dtype.kind in "iuf":
+                        check(variable.dtype == item.dtype and np.array_equal(variable.values, stored),
+                              f"{name}/{key}: xarray's values differ from the dataset's")
+                    else:  # text: xarray gives str objects
+                        expected = [s.decode() if isinstance(s, bytes) else s for s in np.ravel(stored)]
+                        check(list(np.ravel(variable.values)) == expected, f"{name}/{key}: text differs")
+
+
+def dims(path, group, variable):
+    with open_group(path, group) as ds:
+        return ds[variable].dims
+
+
+def expect_dims(path, group, variable, expected):
+    got = dims(path, group, variable)
+    check(got == expected, f"{os.path.basename(path)}:{group}/{variable} has dims {got}, expected {expected}")
+
+
+def expect_coordinate(path, group, dimension, dataset):
+    """Dimension `dimension` of `group` is labelled with the values of `dataset`."""
+    with open_group(path, group) as ds, h5py.File(path, "r") as f:
+        ok = dimension in ds.coords and np.array_equal(ds.coords[dimension].values, f[dataset][()].astype(
+            ds.coords[dimension].dtype) if f[dataset].dtype.kind in "iuf" else ds.coords[dimension].values)
+        if f[dataset].dtype.kind not in "iuf":
+            ok = dimension in ds.coords and list(ds.coords[dimension].values) == [
+                s.decode() if isinstance(s, bytes) else s for s in f[dataset][()]]
+        check(ok, f"{os.path.basename(path)}:{group}: coordinate {dimension} is not {dataset}")
+
+
+def expect_length(path, group, dimension, dataset):
+    with open_group(path, group) as ds, h5py.File(path, "r") as f:
+        check(ds.dims.get(dimension) == f[dataset].shape[0],
+              f"{os.path.basename(path)}:{group}: dimension {dimension} is not as long as {dataset}")
+
+
+ENSEMBLE = """title = "xarray test ensemble"
+seed = 3
+duration_s = 20e-6
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+static_friction = 0.28
+kinetic_friction = 0.22
+[surface]
+file = "{surface}"
+[domain]
+policy = "flag"
+[spectrum]
+window = "hann"
+start_s = 2e-6
+min_frequency_hz = 100e3
+high_resolution = false
+[noise]
+snr_db = 30
+[ensemble]
+realisations = 3
+trace_realisations = [0]
+"""
+
+SWEEP = """
+[[ensemble.sweep]]
+parameter = "surface.summits.count"
+values = [1, 2]
+
+[[ensemble.draw]]
+parameter = "surface.stiffness.sigma_log"
+kind = "uniform"
+min = 0.1
+max = 0.3
+"""
+
+DEVICE = """duration_s = 20e-6
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+static_friction = 0.28
+kinetic_friction = 0.22
+damping_n_s_per_m = 1e-7
+stribeck_decay_s_per_m = 1e-7
+atan_sharpness_s_per_m = 1e3
+friction_form = "consistent"
+[circuit]
+load_resistance_ohm = 1e6
+load_capacitance_f = 0
+[surface.defaults]
+mass_kg = 1e-12
+normal_load_n = 1e-3
+charge_density_c_per_m2 = 80e-6
+effective_thickness_m = 50e-6
+width_m = 10e-6
+length_m = 50e-6
+[[surface.asperity]]
+stiffness_n_per_m = 75
+[[surface.asperity]]
+stiffness_n_per_m = 62
+[inverse]
+count = [1, 3]
+median_n_per_m = [60, 90]
+sigma_log = [0.1, 0.2]
+snr_db = [25, 35]
+calibration_records = 50
+seed = 5
+"""
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--binary", required=True)
+    parser.add_argument("--work-dir")
+    args = parser.parse_args()
+    binary = os.path.abspath(args.binary)
+    with tempfile.TemporaryDirectory(prefix="stengmc-netcdf-") as scratch:
+        work = os.path.abspath(args.work_dir) if args.work_dir else scratch
+        os.makedirs(work, exist_ok=True)
+        out = lambda name: os.path.join(work, name)  # noqa: E731
+        study = lambda name: os.path.join(SOURCE_DIR, "studies", name)  # noqa: E731
+
+        # Run files: a paper study (spectra, ESPRIT lines, spectrogram, element currents)
+        # and a random surface's realisation (its contact population under /surface).
+        run(binary, "run", study("paper/fig6_vb1_l50.toml"), "-o", out("run.h5"), cwd=work)
+        # Its k = 25 N/m asperity reaches l: the run is flagged and its circuit stops early.
+        run(binary, "run", study("paper/fig6_vb1.toml"), "-o", out("flagged.h5"), cwd=work)
+        run(binary, "run", study("surfaces/gw_vb10.toml"), "--realisation", "3", "-o", out("random.h5"), cwd=work)
+        run(binary, "circuit", out("run.h5"), "-R", "1e6", "-o", out("circuit.h5"), cwd=work)
+        run(binary, "spectrum", out("run.h5"), "--settings", study("paper/fig6_vb1_l50.toml"), "-o", out("spectrum.h5"),
+            cwd=work)
+        run(binary, "surface", os.path.join(SOURCE_DIR, "surfaces", "pet_on_steel_gw.toml"), "--realisations", "2",
+            "--seed", "1", "-o", out("surface.h5"), cwd=work)
+        surface = os.path.join(SOURCE_DIR, "surfaces", "lognormal_count.toml")
+        with open(out("single.toml"), "w") as f:
+            f.write(ENSEMBLE.format(surface=surface))
+        with open(out("sweep.toml"), "w") as f:
+            f.write(ENSEMBLE.format(surface=surface) + SWEEP)
+        run(binary, "run", out("single.toml"), "-j", "2", "-o", out("single.h5"), cwd=work)
+        run(binary, "run", out("sweep.toml"), "-j", "2", "-o", out("sweep.h5"), cwd=work)
+        with open(out("device.toml"), "w") as f:
+            f.write(DEVICE)
+        run(binary, "calibrate", out("device.toml"), "-j", "2", "-o", out("bank.h5"), cwd=work)
+        # A record of the device (its two asperities) as the CSV `t,V` invert reads.
+        run(binary, "run", out("device.toml"), "-o", out("record.h5"), cwd=work)
+        with h5py.File(out("record.h5"), "r") as f:
+            np.savetxt(out("record.csv"), np.column_stack([f["time"][()], f["circuit/voltage"][()]]),
+                       delimiter=",", header="t,V", comments="", fmt="%.17g")
+        run(binary, "invert", out("record.csv"), "--known", out("device.toml"), "--bank", out("bank.h5"),
+            "-o", out("inverse.h5"), cwd=work)
+
+        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "bank.h5",
+                 "inverse.h5"]
+        for name in files:
+            check_every_group(out(name))
+
+        for name in ("run.h5", "random.h5"):
+            r = out(name)
+            expect_coordinate(r, "/", "time", "/time")
+            expect_dims(r, "/circuit", "voltage", ("time",))
+            expect_dims(r, "/circuit", "charge", ("time",))
+            expect_length(r, "/circuit", "time", "/time")
+            expect_dims(r, "/asperity", "x", ("asperity", "time"))
+            expect_dims(r, "/asperity", "v", ("asperity", "time"))
+            expect_dims(r, "/asperity", "k", ("asperity",))
+            expect_dims(r, "/events", "time", ("event",))
+            expect_coordinate(r, "/spectrum", "frequency", "/spectrum/frequency")
+            expect_dims(r, "/spectrum", "voltage", ("frequency",))
+            expect_dims(r, "/spectrum/peaks", "frequency", ("peak",))
+            expect_coordinate(r, "/surface/realisations", "realisation", "/surface/realisations/realisation")
+            expect_dims(r, "/surface/asperities", "stiffness_n_per_m", ("asperity",))
+        r = out("run.h5")
+        expect_dims(r, "/asperity", "current", ("asperity", "time"))
+        expect_dims(r, "/spectrum", "current", ("asperity", "frequency"))
+        expect_dims(r, "/spectrum/lines", "frequency", ("line",))
+        expect_dims(r, "/spectrogram", "voltage", ("time", "frequency"))
+        expect_coordinate(r, "/spectrogram", "time", "/spectrogram/time")
+        expect_coordinate(r, "/spectrogram", "frequency", "/spectrogram/frequency")
+        expect_dims(out("random.h5"), "/surface/summits", "height_m", ("summit",))
+        # A flagged run's circuit spans the leading samples of /time only: its own axis.
+        f = out("flagged.h5")
+        expect_dims(f, "/circuit", "voltage", ("valid_time",))
+        expect_dims(f, "/asperity", "current", ("asperity", "valid_time"))
+        expect_dims(f, "/asperity", "x", ("asperity", "time"))
+        with h5py.File(f, "r") as h:
+            check(h["circuit/voltage"].shape[0] < h["time"].shape[0], "flagged.h5: the circuit did not stop early")
+
+        c = out("circuit.h5")
+        expect_coordinate(c, "/", "time", "/time")
+        expect_dims(c, "/circuit", "voltage", ("time",))
+        expect_dims(c, "/asperity", "v", ("asperity", "time"))
+        s = out("spectrum.h5")
+        expect_coordinate(s, "/spectrum", "frequency", "/spectrum/frequency")
+        expect_dims(s, "/spectrum", "voltage", ("frequency",))
+        expect_dims(s, "/spectrogram", "voltage", ("time", "frequency"))
+
+        p = out("surface.h5")
+        expect_coordinate(p, "/realisations", "realisation", "/realisations/realisation")
+        expect_dims(p, "/realisations", "summit_count", ("realisation",))
+        expect_dims(p, "/summits", "height_m", ("summit",))
+        expect_dims(p, "/asperities", "stiffness_n_per_m", ("asperity",))
+        expect_coordinate(p, "/target/heights", "value", "/target/heights/value")
+        expect_dims(p, "/target/heights", "density", ("value",))
+        expect_dims(p, "/load_separation", "total_load_n", ("separation_m",))
+
+        for name in ("single.h5", "sweep.h5"):
+            e = out(name)
+            expect_coordinate(e, "/realisations", "realisation", "/realisations/realisation")
+            for variable in ("voltage_rms_v", "valid", "grid_point", "fft_ratio"):
+                expect_dims(e, "/realisations", variable, ("realisation",))
+            expect_dims(e, "/asperities", "natural_frequency_hz", ("asperity",))
+            expect_dims(e, "/summary/voltage_rms_v", "mean", ("grid_point",))
+            expect_dims(e, "/summary/pooled", "fft_ratio_low", ("grid_point",))
+        trace = "/traces/realisation_0"
+        expect_coordinate(out("single.h5"), trace, "time", trace + "/time")
+        expect_dims(out("single.h5"), trace, "voltage", ("time",))
+        w = out("sweep.h5")
+        expect_dims(w, "/grid", "values", ("grid_point", "parameter"))
+        expect_coordinate(w, "/grid", "parameter", "/grid/parameter")
+        expect_dims(w, "/draws", "values", ("realisation", "parameter"))
+        expect_coordinate(w, "/draws", "parameter", "/draws/parameter")
+        trace = "/traces/point_1/realisation_0"
+        expect_coordinate(w, trace, "time", trace + "/time")
+        expect_dims(w, trace, "voltage", ("time",))
+
+        b = out("bank.h5")
+        expect_coordinate(b, "/records", "realisation", "/records/realisation")
+        expect_dims(b, "/records", "naive_counts", ("realisation", "threshold"))
+        expect_dims(b, "/atoms", "heads", ("head", "head_sample"))
+        expect_dims(b, "/atoms", "tail_shift_s", ("tail",))
+        expect_dims(b, "/maps", "confusion", ("estimated_count", "count"))
+
+        i = out("inverse.h5")
+        expect_dims(i, "/inverse/records", "noise_sigma_v", ("record",))
+        expect_coordinate(i, "/inverse/count", "counts", "/inverse/count/counts")
+        expect_dims(i, "/inverse/count", "probability", ("record", "counts"))
+        expect_dims(i, "/inverse/lines", "frequency_hz", ("line",))
+        trace = "/inverse/traces/record_0"
+        expect_coordinate(i, trace, "time", trace + "/time")
+        expect_dims(i, trace, "model", ("time",))
+
+    if FAILURES:
+        print(f"{len(FAILURES)} failures:")
+        print("\n".join("  " + f for f in FAILURES))
+        return 1
+    print(f"all {len(files)} output kinds open in xarray with named dimensions, units and long names")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
