@@ -45,12 +45,14 @@ void check_finite(const std::string& path, std::span<const double> values) {
 }
 
 //! A transfer list whose type-conversion buffer holds `count` elements of `element_bytes`
-//! (at least one). HDF5 converts variable-length strings through that buffer and, left to
-//! its default, callocs 1 MiB for every such write: a quarter of a single run's page
-//! faults, for a few dozen bytes of strings.
+//! (at least one, at most HDF5's default 1 MiB, beyond which it converts in pieces).
+//! HDF5 converts variable-length strings through that buffer and, left to its default,
+//! callocs 1 MiB for every such write: a quarter of a single run's page faults, for a few
+//! dozen bytes of strings.
 H5::DSetMemXferPropList conversion_buffer(std::size_t count, std::size_t element_bytes) {
+  constexpr std::size_t DEFAULT_BYTES = 1 << 20;
   H5::DSetMemXferPropList transfer;
-  transfer.setBuffer(std::max<std::size_t>(count, 1) * element_bytes, nullptr, nullptr);
+  transfer.setBuffer(std::clamp(count * element_bytes, element_bytes, DEFAULT_BYTES), nullptr, nullptr);
   return transfer;
 }
 
