@@ -44,6 +44,18 @@ void check_finite(const std::string& path, std::span<const double> values) {
                   "); no output was written");
 }
 
+//! A transfer list whose type-conversion buffer holds `count` elements of `element_bytes`
+//! (at least one, at most HDF5's default 1 MiB, beyond which it converts in pieces).
+//! HDF5 converts variable-length strings through that buffer and, left to its default,
+//! callocs 1 MiB for every such write: a quarter of a single run's page faults, for a few
+//! dozen bytes of strings.
+H5::DSetMemXferPropList conversion_buffer(std::size_t count, std::size_t element_bytes) {
+  constexpr std::size_t DEFAULT_BYTES = 1 << 20;
+  H5::DSetMemXferPropList transfer;
+  transfer.setBuffer(std::clamp(count * element_bytes, element_bytes, DEFAULT_BYTES), nullptr, nullptr);
+  return transfer;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- Hdf5Writer
@@ -169,7 +181,8 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
     const hsize_t dims[1] = {values.size()};
     group_for(path);
     H5::DataSet dataset = file_->createDataSet(path, string_type(), H5::DataSpace(1, dims));
-    if (!values.empty()) dataset.write(pointers.data(), string_type());
+    if (!values.empty()) dataset.write(pointers.data(), string_type(), H5::DataSpace::ALL, H5::DataSpace::ALL,
+                                       conversion_buffer(values.size(), sizeof(hvl_t)));
     set_units(dataset, units);
   });
 }
