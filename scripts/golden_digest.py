@@ -200,7 +200,7 @@ def write_digests(digests, path, binary):
                              text=True).stdout.strip()
     version = printed.splitlines()[0] if printed else "an unknown version"
     with open(path, "w") as f:
-        f.write("# Golden digests of the shipped studies (scripts/golden_digest.py; README, 'Tests').\n")
+        f.write("# Golden digests of the shipped studies (scripts/golden_digest.py; docs/development.md, 'Tests').\n")
         f.write(f"# Regenerate: {REGENERATE}\n")
         f.write("# A commit that changes this file says which numbers changed and why.\n")
         f.write(f"# Generated on {platform_note()} by {version}\n")

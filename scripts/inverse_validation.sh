@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The inverse estimation's validation (issue 11; README: inverse estimation, "validation"):
+# The inverse estimation's validation (issue 11; docs/inverse.md, "validation"):
 # for each known device of studies/inverse/ (v_b = 10 and 5 m/s), a calibration bank from
 # its [inverse] prior (seeds 1100, 500), 250 validation signals of the same prior drawn as an
 # ensemble with other seeds (2100, 1500), those signals inverted with the bank, and the

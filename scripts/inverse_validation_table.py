@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The inverse validation's results table (README: inverse estimation, "validation").
+"""The inverse validation's results table (docs/inverse.md, "validation").
 
     inverse_validation_table.py VALIDATION.h5 INVERTED.h5 BANK.h5 [VALIDATION2.h5 INVERTED2.h5 BANK2.h5 ...]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The quick inverse demo (README: inverse estimation): a calibration bank of the demo device
+# The quick inverse demo (docs/inverse.md): a calibration bank of the demo device
 # (studies/inverse/demo_device.toml: 300 simulated records, a minute or two on two cores;
 # reused if present), then the shipped synthetic record studies/inverse/demo_record.csv
 # (six asperities, 30 dB; studies/inverse/demo_record.toml says how it was made) inverted

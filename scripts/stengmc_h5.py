@@ -1,5 +1,5 @@
 """What every stengmc figure script needs from an output file: text attributes and a
-checked open (README: output files). Debian's python3-h5py and numpy."""
+checked open (docs/output-files.md). Debian's python3-h5py and numpy."""
 import os
 import sys
 

@@ -1,5 +1,5 @@
 // `stengmc merge`: the shards of an ensemble (run --shard i/n) into the one output file a
-// single run writes (README: ensembles; docs/cluster.md).
+// single run writes (docs/ensembles.md; docs/cluster.md).
 #include <cstdio>
 #include <memory>
 

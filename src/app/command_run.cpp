@@ -88,7 +88,7 @@ void add_run_command(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* command = app.add_subcommand("run", "Run a study: surface -> tribology -> S-TENG circuit -> spectra -> HDF5 output;\n"
                                                  "a study with [ensemble] runs its realisations in parallel and reports statistics");
-  command->add_option("study", options->study_file, "Study file (TOML; see studies/ and the README)")
+  command->add_option("study", options->study_file, "Study file (TOML; see studies/ and docs/study-files.md)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");

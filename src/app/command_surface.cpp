@@ -95,7 +95,7 @@ void add_surface_command(CLI::App& app) {
   auto options = std::make_shared<SurfaceOptions>();
   CLI::App* command = app.add_subcommand(
       "surface", "Sample realisations of a surface file: population statistics, validity report, HDF5 of the populations");
-  command->add_option("surface", options->surface_file, "Surface file (TOML; see surfaces/ and the README)")
+  command->add_option("surface", options->surface_file, "Surface file (TOML; see surfaces/ and docs/study-files.md)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-k,--realisations", options->realisations, "Number of realisations to draw")

@@ -1,6 +1,6 @@
 #pragma once
 //! --max-memory-gb and --max-steps, the limits every command checks its work estimate
-//! against before it starts (pipeline/work_estimate.hpp; README: "Limits").
+//! against before it starts (pipeline/work_estimate.hpp; docs/faults.md, "Limits").
 #include <CLI/CLI.hpp>
 
 #include "app/validators.hpp"

@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"
-               "Every quantity is in SI units. Model: MODEL.md; file layouts: README.md.\n"
+               "Every quantity is in SI units. Model: docs/model.md; file layouts: docs/study-files.md, docs/output-files.md.\n"
                "Exit codes: 0 ok, 2 bad input, 3 model out of its validity domain, 1 other failure."};
   app.set_version_flag("--version", std::string("stengmc ") + stengmc::program_version() + " (git " +
                                         stengmc::git_revision() + ")");

@@ -1,6 +1,6 @@
 #pragma once
 //! Opening what a user names as an input: a regular file of bounded size, or a named
-//! error (README: "Rejected inputs and faults"). A device such as /dev/zero would be read
+//! error (docs/faults.md). A device such as /dev/zero would be read
 //! until memory ran out, a FIFO would block forever.
 #include <cstdint>
 #include <filesystem>

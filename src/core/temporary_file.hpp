@@ -1,6 +1,6 @@
 #pragma once
 //! The temporary name an output is written under before it is renamed into place, and
-//! its removal on every failure path (README: "Rejected inputs and faults").
+//! its removal on every failure path (docs/faults.md).
 //!
 //! The name is `<final>.<host>.<pid>.tmp`: two runs writing the same output (on one machine
 //! or on several sharing a disk) never write the same temporary. The file is removed

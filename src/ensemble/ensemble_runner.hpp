@@ -1,7 +1,7 @@
 #pragma once
 //! The Monte Carlo runner: realisations of a study in parallel (OpenMP), each a unit of
 //! work computable from the study and its id alone, kept in a crash-safe journal so a
-//! killed run resumes where it stopped (README: ensembles).
+//! killed run resumes where it stopped (docs/ensembles.md).
 #include <cstdint>
 #include <functional>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-//! The [ensemble] table of a study (README: ensembles).
+//! The [ensemble] table of a study (docs/ensembles.md).
 #include <cstdint>
 #include <string>
 #include <optional>

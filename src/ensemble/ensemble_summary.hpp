@@ -1,5 +1,5 @@
 #pragma once
-//! The statistics of an ensemble with 95 % confidence intervals (README: ensembles):
+//! The statistics of an ensemble with 95 % confidence intervals (docs/ensembles.md):
 //! every per-realisation scalar over the valid realisations, the pooled identifiability
 //! ratios, the fraction of valid realisations, and which realisations broke and why.
 #include <array>

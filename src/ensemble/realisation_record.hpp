@@ -10,7 +10,7 @@
 
 namespace stengmc {
 
-//! The per-realisation scalars, in file order (README: ensemble output). The numeric
+//! The per-realisation scalars, in file order (docs/ensembles.md, ensemble output). The numeric
 //! order is part of the journal format: append new ones at the end, never reorder.
 enum class Scalar : std::size_t {
   summit_count,         //!< summits drawn [-]

@@ -14,7 +14,7 @@ namespace stengmc {
 //! @param base the study read without drawing a realisation (read_study(file, nullopt))
 //! @param keep_traces also keep the time, voltage and charge traces (and the noisy voltage
 //!        with [noise])
-//! With [[ensemble.draw]], the realisation's drawn values are set first (README: ensembles)
+//! With [[ensemble.draw]], the realisation's drawn values are set first (docs/ensembles.md)
 //! and kept as the record's extras "draw:<parameter>".
 //! A realisation whose model breaks (ModelError: x reaching l under `error`, an integrator
 //! failure, nothing in contact, a line above Nyquist) or whose run is flagged invalid

@@ -1,6 +1,6 @@
 #pragma once
 //! Parameter sweeps: every grid point of [[ensemble.sweep]] is an ensemble of the same
-//! realisation ids under its own parameter values (README: ensembles).
+//! realisation ids under its own parameter values (docs/ensembles.md).
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-//! Realisations over MPI ranks (README: ensembles; docs/cluster.md). Rank 0 keeps the
+//! Realisations over MPI ranks (docs/ensembles.md; docs/cluster.md). Rank 0 keeps the
 //! queue of realisation ids of the current batch and hands them out one at a time to
 //! whichever thread asks first: its own OpenMP threads take them from the queue directly,
 //! every OpenMP thread of the other ranks asks over MPI (sending its finished record with

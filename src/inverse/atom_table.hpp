@@ -1,7 +1,7 @@
 #pragma once
 //! Fast, accurate atoms: the voltage V_1(t; k) one asperity of stiffness k produces alone on
 //! the known device, for any k in a range, in ~20 us instead of the forward model's ~10 ms
-//! (README: inverse estimation, "atoms").
+//! (docs/inverse.md, "atoms").
 //!
 //! An atom has a head (the belt drags the asperity up to breakaway, then the first cycles,
 //! where the friction's regularisation shapes the motion) and a tail (a free oscillation on

@@ -1,6 +1,6 @@
 #pragma once
 //! What a calibration bank was made from, and its hash: a bank is valid only for the same
-//! known device, prior, record grid and estimator (README: inverse estimation, "banks").
+//! known device, prior, record grid and estimator (docs/inverse.md, "banks").
 #include <cstdint>
 #include <string>
 

@@ -1,6 +1,6 @@
 #pragma once
 //! What a calibration bank learns about the estimator on simulations of the prior, and how
-//! it turns a raw estimate into a calibrated one (README: inverse estimation, "calibration").
+//! it turns a raw estimate into a calibrated one (docs/inverse.md, "calibration").
 //!
 //! - The count: P(true n = n | n-hat = m), the estimator's confusion on the bank, with the
 //!   offsets n - m pooled over neighbouring m until at least 60 records (the confusion

@@ -1,7 +1,7 @@
 #pragma once
 //! A calibration: the prior's records simulated with the ensemble runner (reproducible by
 //! seed, journalled, OpenMP, bitwise identical for any thread count), the estimator applied
-//! to each noisy record as it finishes, the maps fitted (README: inverse estimation,
+//! to each noisy record as it finishes, the maps fitted (docs/inverse.md,
 //! `stengmc calibrate`).
 #include <string>
 #include <vector>

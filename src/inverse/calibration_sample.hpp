@@ -1,6 +1,6 @@
 #pragma once
 //! One simulated record of a calibration: what was true and what the raw estimator said
-//! (README: inverse estimation, "calibration"). Carried through the ensemble's journal as
+//! (docs/inverse.md, "calibration"). Carried through the ensemble's journal as
 //! named extras of the realisation's record, so an interrupted calibration resumes.
 #include <cstdint>
 #include <vector>

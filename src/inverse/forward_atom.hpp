@@ -1,6 +1,6 @@
 #pragma once
 //! The one place the inversion calls the forward model: the voltage a single asperity of the
-//! known device produces on its own (README: inverse estimation, "atoms"). Everything the
+//! known device produces on its own (docs/inverse.md, "atoms"). Everything the
 //! estimator knows about the physics comes through here, so a faster forward path (issue 12)
 //! replaces this one function.
 #include <span>

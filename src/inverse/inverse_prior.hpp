@@ -49,7 +49,7 @@ struct InversePrior {
   [[nodiscard]] std::string describe() const;
 };
 
-//! Reads `[inverse]`, checking every key (README: inverse estimation). Ranges are arrays
+//! Reads `[inverse]`, checking every key (docs/inverse.md). Ranges are arrays
 //! [min, max] (equal ends fix the value).
 InversePrior read_inverse_prior(TomlTable& table);
 

@@ -1,6 +1,6 @@
 #pragma once
 //! The known device of an inversion: everything about the sensor but the number of sliding
-//! asperities and their stiffnesses (README: inverse estimation). Every asperity shares the
+//! asperities and their stiffnesses (docs/inverse.md). Every asperity shares the
 //! device's mass, load and S-TENG element; the record starts with every asperity at rest
 //! (x = x' = 0) at t = 0, as the forward model does.
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 //! Where one more atom would explain a residual best, for every stiffness at once: the
-//! proposals of the line search (README: inverse estimation, "search").
+//! proposals of the line search (docs/inverse.md, "search").
 //!
 //! Adding atom g_k to a fit with residual r lowers the squared residual by
 //! score(k) = 2 <r, g_k> - |g_k|^2. An atom's tail is E(t) cos(omega_k t + phi_k) with the

@@ -1,6 +1,6 @@
 #pragma once
 //! The search for the stiffnesses of n sliding asperities, for every n near the best one
-//! (README: inverse estimation, "search").
+//! (docs/inverse.md, "search").
 //!
 //! Each atom has a fixed amplitude and phase (the known device fixes both for a given k), so
 //! a record is fitted by choosing the k_i alone: greedy additions (the best-scoring

@@ -1,6 +1,6 @@
 #pragma once
 //! The study a calibration runs: the known device, its asperities drawn from the prior
-//! (README: inverse estimation, "calibration"). It is an ordinary ensemble study, written
+//! (docs/inverse.md, "calibration"). It is an ordinary ensemble study, written
 //! out as text (and kept in the bank, so anyone can see and re-run what was simulated):
 //! a random surface whose summit count and stiffness law are [[ensemble.draw]]s, every
 //! summit carrying the device's load, mass and element; white noise at a drawn SNR.

@@ -1,7 +1,7 @@
 #pragma once
 //! One record in, the raw estimate out: noise level, fits of every plausible count, the
 //! count's posterior, the identified lines with their uncertainty, the realised population's
-//! median and spread, and the checks the verdict speaks from (README: inverse estimation).
+//! median and spread, and the checks the verdict speaks from (docs/inverse.md).
 //! Calibration (calibration_maps.hpp) turns the raw posterior and spreads into calibrated
 //! ones; this class knows nothing of banks.
 #include <span>

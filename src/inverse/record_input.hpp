@@ -1,5 +1,5 @@
 #pragma once
-//! What an inversion demands of a record before it looks at it (README: inverse estimation,
+//! What an inversion demands of a record before it looks at it (docs/inverse.md,
 //! rejected inputs): enough samples, finite values, times that increase on a uniform grid.
 #include <span>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-//! The calibration bank file (README: inverse estimation, "calibration bank"),
+//! The calibration bank file (docs/inverse.md, "calibration bank"),
 //! file_type "stengmc-calibration-bank":
 //!   root attributes  provenance (the device study's file and text, calibration seed, program
 //!                    version, git revision, date); identity_hash (hex) and what it hashes:

@@ -1,5 +1,5 @@
 #pragma once
-//! The output of an ensemble (README: ensemble output), file_type "stengmc-ensemble":
+//! The output of an ensemble (docs/ensembles.md, ensemble output), file_type "stengmc-ensemble":
 //!   /grid/          sweeps only: parameter (text, one per axis), values (G x axes)
 //!   /realisations/  one entry per realisation, by grid point then id: grid_point,
 //!                   realisation, valid (0/1), failure (text), every Scalar by name,

@@ -1,5 +1,5 @@
 #pragma once
-//! The output of `stengmc invert` (README: inverse estimation, output), file_type
+//! The output of `stengmc invert` (docs/inverse.md, output), file_type
 //! "stengmc-inverse". S records, C counts of the prior, L identified lines in all:
 //!   root attributes   provenance (the --known study's file and text), bank (path, "" without),
 //!                     bank_identity_hash, bank_git_revision, calibrated (0/1), records (S)

@@ -1,5 +1,5 @@
 #pragma once
-//! The records `stengmc invert` reads (README: inverse estimation): a CSV `t,V`; a stengmc
+//! The records `stengmc invert` reads (docs/inverse.md): a CSV `t,V`; a stengmc
 //! run (or circuit) file, its /circuit/measured_voltage when it has one, else
 //! /circuit/voltage; or a stengmc ensemble file, every kept trace (measured_voltage when
 //! the study had [noise]) as one record.

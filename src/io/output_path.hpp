@@ -1,5 +1,5 @@
 #pragma once
-//! Where a command may write (README: "Rejected inputs and faults"): never over one of its
+//! Where a command may write (docs/faults.md): never over one of its
 //! own inputs, never onto something that is not a regular file.
 #include <string>
 #include <vector>

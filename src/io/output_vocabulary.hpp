@@ -1,6 +1,6 @@
 #pragma once
 //! The vocabulary of stengmc's output files: for every dataset a writer makes, its CF
-//! `units`, its `long_name` and the names of its axes (README, "Output files"). Writers
+//! `units`, its `long_name` and the names of its axes (docs/output-files.md). Writers
 //! pass describe_output to Hdf5Writer, which writes the attributes and, at commit, the
 //! dimension scales that let netCDF readers (xarray) label the arrays.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-//! Sampled populations and their validity reports in an HDF5 file (README: output files).
+//! Sampled populations and their validity reports in an HDF5 file (docs/output-files.md).
 //! One layout for `stengmc surface` (group "/") and for a run's own realisation (group
 //! "/surface"), so every tool reads both the same way. K realisations are stored as flat
 //! arrays with offsets, realisation j's summits being [summit_offset[j], summit_offset[j+1]).

@@ -1,5 +1,5 @@
 #pragma once
-//! The output file of a run (layout: README, "Output files"). Format version 1.
+//! The output file of a run (layout: docs/output-files.md). Format version 1.
 #include <cstdint>
 #include <span>
 #include <string>

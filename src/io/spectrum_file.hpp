@@ -1,5 +1,5 @@
 #pragma once
-//! The /spectrum and /spectrogram groups of an output file (README: output files).
+//! The /spectrum and /spectrogram groups of an output file (docs/output-files.md).
 #include "core/hdf5_file.hpp"
 #include "pipeline/analyse_spectra.hpp"
 #include "spectral/spectrum_settings.hpp"

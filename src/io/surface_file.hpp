@@ -1,5 +1,5 @@
 #pragma once
-//! The output of `stengmc surface` (README: output files), file_type "stengmc-surface":
+//! The output of `stengmc surface` (docs/output-files.md), file_type "stengmc-surface":
 //!   /realisations, /summits, /asperities   the populations (layout: io/population_file.hpp)
 //!   /target/heights/{value, density}       the height law (attribute discrete = 0/1; for a
 //!   /target/stiffness/{value, density}     discrete law `density` holds probabilities);

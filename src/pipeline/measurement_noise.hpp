@@ -1,5 +1,5 @@
 #pragma once
-//! Measurement noise on the voltage a spectral analysis sees (README: [noise]).
+//! Measurement noise on the voltage a spectral analysis sees (docs/ensembles.md, [noise]).
 #include <span>
 #include <vector>
 

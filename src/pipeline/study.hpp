@@ -1,6 +1,6 @@
 #pragma once
 //! A study: everything one run (one realisation) needs, read from a TOML study file
-//! (README: study files). The tables of higher layers are theirs: [ensemble] is read by
+//! (docs/study-files.md). The tables of higher layers are theirs: [ensemble] is read by
 //! the ensemble layer (ensemble/study_file.hpp), [inverse] by the inverse commands.
 #include <cstdint>
 #include <string>
@@ -45,7 +45,7 @@ enum class CircuitInput {
 inline constexpr NameTable CIRCUIT_INPUT_NAMES{std::array{NamedValue<CircuitInput>{CircuitInput::actual, "actual"},
                                                           NamedValue<CircuitInput>{CircuitInput::imposed, "imposed"}}};
 
-//! Which n x M traces a run file holds (README: output files); all by default. The
+//! Which n x M traces a run file holds (docs/output-files.md); all by default. The
 //! voltage, charge, time and per-asperity parameters are always written.
 struct OutputTraces {
   bool x = true;         //!< /asperity/x

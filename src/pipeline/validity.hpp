@@ -11,7 +11,7 @@
 
 namespace stengmc {
 
-//! Where a check turns into a warning (README: validity report).
+//! Where a check turns into a warning (docs/study-files.md, validity report).
 struct ValidityThresholds {
   //! Spots count as independent while their interaction would move less than this
   //! fraction of the load between them (SpotInteraction::load_redistribution) [-].

@@ -1,13 +1,13 @@
 #pragma once
 //! What a computation will cost, estimated before it starts, and the limits it must stay
-//! within (README: "Limits"). Every command estimates its work here and refuses, naming the
+//! within (docs/faults.md, "Limits"). Every command estimates its work here and refuses, naming the
 //! quantity, its estimate, the limit and the factor, what cannot fit or finish: one value
 //! (drive_frequency_hz = 1e12, a swept sample_rate_hz = 1e15) must never grow memory until
 //! the machine gives up, or loop for ever.
 //!
 //! The estimate is a sum of named contributions, each a count (samples, asperities,
 //! events, steps) times a per-item cost. The per-item costs are the named constants below,
-//! measured on this code (README: "Limits"); whoever changes what a solver keeps or does
+//! measured on this code (docs/faults.md, "Limits"); whoever changes what a solver keeps or does
 //! per sample, asperity, event or step updates them here, in one place.
 #include <cstddef>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 //! A random surface: the statistical description of a rough contact from which every
 //! realisation draws its asperity population (MODEL.md §4). Read from a surface file with
-//! `kind = "random"` (README: surface files); sampled by sample_population.
+//! `kind = "random"` (docs/study-files.md, surface files); sampled by sample_population.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -67,7 +67,7 @@ struct ContactMaterials {
   [[nodiscard]] double effective_shear_modulus_pa() const { return effective_shear_modulus(body_1, body_2); }
 };
 
-//! The statistical description of one surface (README: surface files).
+//! The statistical description of one surface (docs/study-files.md, surface files).
 struct RandomSurface {
   std::string title;
   double nominal_area_m2 = 0.0;             //!< A0 [m^2]

@@ -1,4 +1,4 @@
-// Reading a random surface (README: surface files). Every rule that needs data another
+// Reading a random surface (docs/study-files.md, surface files). Every rule that needs data another
 // table provides is checked here, so a surface that reads is a surface that samples.
 #include <algorithm>
 #include <cmath>

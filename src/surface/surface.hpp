@@ -1,6 +1,6 @@
 #pragma once
 //! A surface file: either a fixed list of asperities (the paper's hand-picked four) or a
-//! random surface sampled per realisation (README: surface files).
+//! random surface sampled per realisation (docs/study-files.md, surface files).
 #include <cstdint>
 #include <filesystem>
 #include <optional>

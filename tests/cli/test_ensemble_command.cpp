@@ -1,4 +1,4 @@
-// Ensembles through the command line (README: ensembles): the datasets are bitwise
+// Ensembles through the command line (docs/ensembles.md): the datasets are bitwise
 // identical for 1 and 2 threads and when a realisation is re-run alone (--only), and a
 // run killed with SIGKILL and resumed gives the datasets of an uninterrupted run.
 #include <gtest/gtest.h>
@@ -209,7 +209,7 @@ TEST(EnsembleCommand, ASweepPointEqualsTheStudyEditedByHand) {
 
 TEST(EnsembleCommand, NoiseHasTheClosedFormSigmaAndASingleRunIsTheEnsemblesRecord) {
   // [noise] snr_db: sigma^2 = P / 10^(snr/10), P the mean square of the mean-removed clean
-  // voltage over the analysis interval (README: ensembles), computed here from the file's
+  // voltage over the analysis interval (docs/ensembles.md), computed here from the file's
   // own clean voltage; the noise actually added has that standard deviation (within 4
   // standard errors of a sample std, sigma / sqrt(2 N)). Realisation 2 run alone as an
   // ordinary run identifies exactly what the ensemble's record 2 says.

@@ -1,4 +1,4 @@
-// Ensembles over MPI ranks (README: ensembles; docs/cluster.md): `mpirun -np P stengmc run`
+// Ensembles over MPI ranks (docs/ensembles.md; docs/cluster.md): `mpirun -np P stengmc run`
 // writes the file a single process writes, by golden_digest.py's comparison (every dataset
 // and attribute but the creation time), for P = 1, 2, 3 (3 oversubscribes this 2-core
 // machine) and 1 or 2 threads per rank, for an ensemble and a sweep; a job SIGKILLed

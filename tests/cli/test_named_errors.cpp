@@ -1,6 +1,6 @@
 // Inputs that used to escape as raw errors (a Boost message, std::bad_alloc, a Python
 // traceback, a hang) or be accepted when they should not, each now a named error with exit
-// 2 (README: "Rejected inputs and faults"). Run through the real command line; each test
+// 2 (docs/faults.md). Run through the real command line; each test
 // checks the exit code, that the message names the file (and key or line where there is
 // one), and that no raw text leaks out.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Faults around output files, through the real command line (README: "Rejected inputs and
+// Faults around output files, through the real command line (docs/faults.md, "Rejected inputs and
 // faults"):
 //  - a full disk: every command that writes HDF5 is run with its output on a disk that is
 //    already full and on one that fills while the file is written; each must exit 1 with a

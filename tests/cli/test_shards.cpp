@@ -1,4 +1,4 @@
-// Shards (README: ensembles; docs/cluster.md): `run --shard i/n` for i = 0..n-1 and
+// Shards (docs/ensembles.md; docs/cluster.md): `run --shard i/n` for i = 0..n-1 and
 // `merge` give the file one run writes, by golden_digest.py's comparison (every dataset and
 // attribute but the creation time); bad shard specifications and bad merges are refused
 // with exit 2, naming the file, and overwrite nothing.

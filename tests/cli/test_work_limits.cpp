@@ -1,5 +1,5 @@
 // Every command estimates its work before it starts and refuses, naming the quantity, the
-// estimate and the limit, what cannot fit or finish (README: "Limits"). Through the real
+// estimate and the limit, what cannot fit or finish (docs/faults.md, "Limits"). Through the real
 // command line: each refusal exits 2 within seconds (a `timeout` turns the old hang into a
 // failure), writes nothing, and says by how much the limit is exceeded and how to raise it;
 // an ensemble refuses up front what no realisation could do, and marks a realisation

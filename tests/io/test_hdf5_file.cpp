@@ -1,4 +1,4 @@
-// The HDF5 writer never leaves a partial or non-finite file (README: output files).
+// The HDF5 writer never leaves a partial or non-finite file (docs/output-files.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
