@@ -12,6 +12,7 @@ packages=(
   ngspice
   python3 python3-h5py python3-matplotlib python3-numpy
   python3-scipy  # bench/compare_scipy.py: the peer for one asperity-run
+  pybind11-dev python3-dev python3-pytest  # the Python module (python/) and its tests
 )
 
 missing=()
