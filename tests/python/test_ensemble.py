@@ -1,0 +1,89 @@
+"""The module's ensemble is the command line's ensemble file, bitwise: every record
+(/realisations, /asperities), kept trace and statistic (/summary), on 1 and 2 threads
+(the records depend on the study and the realisation id alone, README: ensembles)."""
+import numpy as np
+
+from conftest import assert_bitwise, read_datasets, run_cli, source
+
+# A shrunk studies/ensembles/identifiability_quick.toml: a two-point sweep of the count,
+# four realisations each, [noise] and [spectrum], one kept trace: a second or two.
+STUDY = f"""title = "Python module ensemble test"
+seed = 4
+duration_s = 20e-6
+sample_rate_hz = 100e6
+
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+static_friction = 0.28
+kinetic_friction = 0.22
+
+[surface]
+file = "{source('surfaces', 'lognormal_count.toml')}"
+
+[domain]
+policy = "flag"
+
+[spectrum]
+window = "hann"
+start_s = 5e-6
+prominence_over_floor = 10
+min_frequency_hz = 100e3
+
+[noise]
+snr_db = 30
+
+[ensemble]
+realisations = 4
+trace_realisations = [1]
+
+[[ensemble.sweep]]
+parameter = "surface.summits.count"
+values = [2, 3]
+"""
+
+# The module's names for the trace datasets (the file's /traces/<point>/realisation_<r>/<name>).
+TRACE_NAMES = {"time": "time_s", "voltage": "voltage_v", "charge": "charge_c", "measured_voltage": "measured_voltage_v"}
+
+
+def lookup(ensemble, path):
+    """The module's value for a dataset path of the ensemble file."""
+    parts = path.split("/")
+    value = getattr(ensemble, parts[0])
+    for key in parts[1:-1]:
+        value = value[key]
+    last = TRACE_NAMES[parts[-1]] if parts[0] == "traces" else parts[-1]
+    return value[last]
+
+
+def test_ensemble_equals_the_command_line_file_bitwise(stengmc, tmp_path):
+    study_path = tmp_path / "ensemble.toml"
+    study_path.write_text(STUDY)
+    out = tmp_path / "ensemble.h5"
+    run_cli("run", study_path, "--out", out, "--threads", 2)
+
+    study = stengmc.load_study(study_path)
+    for threads in (1, 2):
+        ensemble = study.run_ensemble(threads=threads)
+        assert ensemble.threads == threads
+        compared = 0
+        for group in ("realisations", "asperities", "traces", "summary", "grid"):
+            for name, data in read_datasets(out, group).items():
+                assert_bitwise(lookup(ensemble, f"{group}/{name}"), data, f"{group}/{name} on {threads} threads")
+                compared += 1
+        # 2 x 4 realisations: every scalar, column, statistic; one trace per point.
+        assert compared > 300
+        assert len(ensemble.realisations["realisation"]) == 8
+        assert set(ensemble.traces) == {"point_0", "point_1"}
+        assert "realisation_1" in ensemble.traces["point_0"]
+
+
+def test_summary_counts_match_the_records(stengmc, tmp_path):
+    # The statistics are over the valid realisations: their count per point is the records'.
+    study_path = tmp_path / "ensemble.toml"
+    study_path.write_text(STUDY)
+    ensemble = stengmc.load_study(study_path).run_ensemble(threads=2)
+    r = ensemble.realisations
+    for point in (0, 1):
+        valid = np.sum(r["valid"][r["grid_point"] == point])
+        assert ensemble.summary["voltage_rms_v"]["count"][point] == valid
