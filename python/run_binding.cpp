@@ -1,6 +1,6 @@
 // stengmc._core.run: one realisation of a study (pipeline/run_study.hpp) as numpy arrays,
 // the same numbers `stengmc run` writes to its run file (README: output files), named
-// with their SI units, and the summary it prints.
+// with their SI units, its spectra when the study has [spectrum], and the summary it prints.
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -9,6 +9,7 @@
 #include "pipeline/run_study.hpp"
 #include "pipeline/run_summary.hpp"
 #include "pipeline/spectral_summary.hpp"
+#include "spectra_dict.hpp"
 #include "tribology/model1.hpp"
 
 namespace py = pybind11;
@@ -121,6 +122,7 @@ py::dict run(const Study& base, std::uint64_t realisation, bool progress) {
   out["asperities"] = asperity_table(*c);
   out["traces"] = traces(*c);
   out["events"] = events(c->result);
+  if (c->result.spectra) out["spectra"] = spectra_dict(*c->result.spectra);
   out["summary"] = summary(*c);
   return out;
 }

@@ -1,6 +1,7 @@
 """The module's run of a realisation is the command line's, bitwise: every dataset of the
-run file that the module returns, read back with h5py, equals the module's numpy array
-value for value (one library, the same study text, the same seed: nothing may differ)."""
+run file (but the surface's population), read back with h5py, equals the module's numpy
+array value for value (one library, the same study text, the same seed: nothing may
+differ), and the module returns nothing the file lacks."""
 import pytest
 
 from conftest import assert_bitwise, read_datasets, run_cli, source
@@ -34,7 +35,26 @@ RUN_FILE = {
     "events/time": ("events", "time_s"),
     "events/asperity": ("events", "asperity"),
     "events/kind": ("events", "kind"),
+    "spectrum/frequency": ("spectra", "frequency_hz"),
+    "spectrum/voltage": ("spectra", "voltage_v"),
+    "spectrum/current": ("spectra", "current_a"),
+    "spectrum/expected_frequency": ("spectra", "expected_frequency_hz"),
+    "spectrum/sliding": ("spectra", "sliding"),
+    "spectrum/peaks/frequency": ("spectra", "peaks", "frequency_hz"),
+    "spectrum/peaks/amplitude": ("spectra", "peaks", "amplitude_v"),
+    "spectrum/peaks/prominence": ("spectra", "peaks", "prominence_v"),
+    "spectrum/lines/frequency": ("spectra", "lines", "frequency_hz"),
+    "spectrum/lines/amplitude": ("spectra", "lines", "amplitude_v"),
+    "spectrum/lines/damping": ("spectra", "lines", "damping_per_s"),
+    "spectrum/lines/phase": ("spectra", "lines", "phase_rad"),
+    "spectrogram/time": ("spectra", "spectrogram", "time_s"),
+    "spectrogram/frequency": ("spectra", "spectrogram", "frequency_hz"),
+    "spectrogram/voltage": ("spectra", "spectrogram", "voltage_v"),
 }
+for method in ("fft", "high_resolution"):
+    for name, ours in (("identified", "identified"), ("matched_line", "matched_line"),
+                       ("frequency_error", "frequency_error_hz"), ("amplitude", "amplitude_v")):
+        RUN_FILE[f"spectrum/identifiability/{method}/{name}"] = ("spectra", "identifiability", method, ours)
 
 
 def module_value(run, path):
@@ -48,15 +68,15 @@ def module_value(run, path):
     ("studies/paper/fig2_k155.toml", 0),    # Model 1, a fixed asperity, every trace with x0
     ("studies/surfaces/gw_vb10.toml", 3),   # Model 2, a random surface's realisation 3, [spectrum]
     ("studies/inverse/demo_record.toml", 0),  # [noise]: the measured voltage
+    ("studies/paper/fig6_vb10_l50.toml", 0),  # ESPRIT lines and a spectrogram
 ])
 def test_run_equals_the_command_line_bitwise(stengmc, tmp_path, study, realisation):
     out = tmp_path / "run.h5"
     run_cli("run", source(study), "--realisation", realisation, "--out", out)
     run = stengmc.load_study(source(study)).run(realisation=realisation)
 
-    # Everything of the run but the spectra and the surface's population (not returned).
-    file = {name: data for name, data in read_datasets(out, "/").items()
-            if name == "time" or name.split("/")[0] in ("circuit", "asperity", "events")}
+    # Everything of the run but the surface's population (`stengmc surface` has it).
+    file = {name: data for name, data in read_datasets(out, "/").items() if not name.startswith("surface/")}
     compared = 0
     for dataset, data in file.items():
         assert dataset in RUN_FILE, f"the run file's {dataset} has no counterpart in the module's result"
@@ -66,6 +86,7 @@ def test_run_equals_the_command_line_bitwise(stengmc, tmp_path, study, realisati
     assert run.measured_voltage_v is None or "circuit/measured_voltage" in file
     assert set(run.traces) == {path[1] for d, path in RUN_FILE.items() if path[0] == "traces" and d in file}
     assert compared >= 20
+    assert (run.spectra is None) == ("spectrum/frequency" not in file)
 
     # The summary the CLI prints and writes as attributes.
     with __import__("h5py").File(out, "r") as f:
@@ -73,6 +94,10 @@ def test_run_equals_the_command_line_bitwise(stengmc, tmp_path, study, realisati
             assert run.summary[key] == f["circuit"].attrs[key], key
         assert run.summary["valid"] == bool(f.attrs["valid"])
         assert run.realisation == f.attrs["realisation"]
+        if run.spectra is not None:
+            for method, ours in run.spectra["identifiability"].items():
+                for key in ("n_sliding", "n_detected", "n_identifiable", "ratio"):
+                    assert ours[key] == f[f"spectrum/identifiability/{method}"].attrs[key], (method, key)
 
 
 def test_run_releases_its_arrays_to_python(stengmc):
