@@ -17,6 +17,8 @@ class Study:
         self._study = core_study
 
     def __getattr__(self, name):
+        if name.startswith("_"):  # not set yet (copy, pickle): no delegation
+            raise AttributeError(name)
         return getattr(self._study, name)
 
     def run(self, realisation=0, progress=False):
