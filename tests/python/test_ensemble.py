@@ -1,46 +1,27 @@
 """The module's ensemble is the command line's ensemble file, bitwise: every record
 (/realisations, /asperities), kept trace and statistic (/summary), on 1 and 2 threads
-(the records depend on the study and the realisation id alone, README: ensembles)."""
+(the records depend on the study and the realisation id alone, README: ensembles), from
+the study's file and from its text."""
+import tomllib
+
 import numpy as np
 
 from conftest import assert_bitwise, read_datasets, run_cli, source
 
-# A shrunk studies/ensembles/identifiability_quick.toml: a two-point sweep of the count,
-# four realisations each, [noise] and [spectrum], one kept trace: a second or two.
-STUDY = f"""title = "Python module ensemble test"
-seed = 4
-duration_s = 20e-6
-sample_rate_hz = 100e6
 
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
+def small_ensemble_text(realisations=4):
+    """studies/ensembles/identifiability_quick.toml shrunk: 20 us records, a two-point sweep
+    of the count, four realisations each, [noise] and [spectrum] as shipped, one kept
+    trace: a second or two."""
+    import stengmc
+    with open(source("studies", "ensembles", "identifiability_quick.toml"), "rb") as f:
+        study = tomllib.load(f)
+    study["duration_s"] = 20e-6
+    study["surface"]["file"] = source("surfaces", "lognormal_count.toml")
+    study["ensemble"] = {"realisations": realisations, "trace_realisations": [1],
+                         "sweep": [{"parameter": "surface.summits.count", "values": [2, 3]}]}
+    return stengmc.toml_text(study)
 
-[surface]
-file = "{source('surfaces', 'lognormal_count.toml')}"
-
-[domain]
-policy = "flag"
-
-[spectrum]
-window = "hann"
-start_s = 5e-6
-prominence_over_floor = 10
-min_frequency_hz = 100e3
-
-[noise]
-snr_db = 30
-
-[ensemble]
-realisations = 4
-trace_realisations = [1]
-
-[[ensemble.sweep]]
-parameter = "surface.summits.count"
-values = [2, 3]
-"""
 
 # The module's names for the trace datasets (the file's /traces/<point>/realisation_<r>/<name>).
 TRACE_NAMES = {"time": "time_s", "voltage": "voltage_v", "charge": "charge_c", "measured_voltage": "measured_voltage_v"}
@@ -57,13 +38,16 @@ def lookup(ensemble, path):
 
 
 def test_ensemble_equals_the_command_line_file_bitwise(stengmc, tmp_path):
+    text = small_ensemble_text()
     study_path = tmp_path / "ensemble.toml"
-    study_path.write_text(STUDY)
+    study_path.write_text(text)
     out = tmp_path / "ensemble.h5"
     run_cli("run", study_path, "--out", out, "--threads", 2)
 
-    study = stengmc.load_study(study_path)
-    for threads in (1, 2):
+    # The study from its file on one thread, from its text (no file read) on two.
+    from_file = stengmc.load_study(study_path)
+    from_text = stengmc.load_study(text, name=str(tmp_path / "not_written.toml"))
+    for threads, study in ((1, from_file), (2, from_text)):
         ensemble = study.run_ensemble(threads=threads)
         assert ensemble.threads == threads
         compared = 0
@@ -81,7 +65,7 @@ def test_ensemble_equals_the_command_line_file_bitwise(stengmc, tmp_path):
 def test_summary_counts_match_the_records(stengmc, tmp_path):
     # The statistics are over the valid realisations: their count per point is the records'.
     study_path = tmp_path / "ensemble.toml"
-    study_path.write_text(STUDY)
+    study_path.write_text(small_ensemble_text())
     ensemble = stengmc.load_study(study_path).run_ensemble(threads=2)
     r = ensemble.realisations
     for point in (0, 1):
@@ -91,13 +75,11 @@ def test_summary_counts_match_the_records(stengmc, tmp_path):
 
 def test_python_threads_run_while_the_ensemble_computes(stengmc, tmp_path):
     # The GIL is released around the C++: a Python thread ticking every ~10 ms gets many
-    # ticks in while the ensemble runs (~1 s). With the GIL held it would get at most the
+    # ticks in while the ensemble runs (~0.5 s). With the GIL held it would get at most the
     # one or two the interpreter's 5 ms switch interval allows at the call's edges.
     import threading
     import time
-    study_path = tmp_path / "ensemble.toml"
-    study_path.write_text(STUDY)
-    study = stengmc.load_study(study_path)
+    study = stengmc.load_study(small_ensemble_text(realisations=100), name=str(tmp_path / "ensemble.toml"))
     ticks, stop = [], threading.Event()
 
     def ticker():
@@ -107,11 +89,13 @@ def test_python_threads_run_while_the_ensemble_computes(stengmc, tmp_path):
 
     thread = threading.Thread(target=ticker)
     thread.start()
-    start = time.monotonic()
-    study.run_ensemble(threads=1)
-    end = time.monotonic()
-    stop.set()
-    thread.join()
+    try:
+        start = time.monotonic()
+        study.run_ensemble(threads=1)
+        end = time.monotonic()
+    finally:
+        stop.set()
+        thread.join()
     inside = [t for t in ticks if start < t < end]
     assert end - start > 0.2, "the ensemble ran too briefly to tell"
     assert len(inside) >= 10, f"{len(inside)} ticks in {end - start:.2f} s"

@@ -1,46 +1,26 @@
 """The module's inverse estimate of a record is `stengmc invert`'s on the same record,
 bitwise: P(n), the count and its interval, each line's stiffness with its interval, the
 population's median and spread, with a calibration bank and without one."""
+import tomllib
+
 import numpy as np
 import pytest
 
-from conftest import assert_bitwise, read_datasets, run_cli
+from conftest import assert_bitwise, read_datasets, run_cli, source
 
-# tests/support/inverse_device.hpp's small known device: Model 2 at v_b = 10 m/s, 20 us
-# records at 100 MHz, a prior of 1-3 asperities around 60-90 N/m; a 50-record bank takes
-# seconds.
-DEVICE = """duration_s = 20e-6
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = {k1}
-"""
-PRIOR = """[inverse]
-count = [1, 3]
-median_n_per_m = [60, 90]
-sigma_log = [0.1, 0.2]
-snr_db = [25, 35]
-calibration_records = 50
-seed = 5
-"""
+# The shipped demo device (Table 1-2 values, Model 2 at v_b = 10 m/s, l = 50 um, 1 MOhm)
+# with 20 us records and a small prior, 1-3 asperities around 60-90 N/m, as
+# tests/cli/test_invert_command.cpp uses: a 50-record bank takes seconds.
+SMALL_PRIOR = {"count": [1, 3], "median_n_per_m": [60, 90], "sigma_log": [0.1, 0.2], "snr_db": [25, 35],
+               "calibration_records": 50, "seed": 5}
+
+
+def small_device():
+    with open(source("studies", "inverse", "demo_device.toml"), "rb") as f:
+        device = tomllib.load(f)
+    device["duration_s"] = 20e-6
+    device["inverse"] = SMALL_PRIOR
+    return device
 
 
 @pytest.fixture(scope="module")
@@ -50,11 +30,13 @@ def device(tmp_path_factory):
     import stengmc
     folder = tmp_path_factory.mktemp("invert")
     known = folder / "device.toml"
-    known.write_text(DEVICE.format(k1=75) + PRIOR)
+    known.write_text(stengmc.toml_text(small_device()))
     bank = folder / "bank.h5"
     run_cli("calibrate", known, "-o", bank, "-j", 2)
-    record = stengmc.load_study(DEVICE.format(k1=55) + "[[surface.asperity]]\nstiffness_n_per_m = 85\n",
-                                name=str(folder / "record.toml")).run()
+    record = small_device()
+    del record["inverse"]
+    record["surface"]["asperity"] = [{"stiffness_n_per_m": 55.0}, {"stiffness_n_per_m": 85.0}]
+    record = stengmc.load_study(record, name=str(folder / "record.toml")).run()
     voltage = record.voltage_v + np.random.default_rng(3).normal(0.0, 1e-4, record.voltage_v.size)
     csv = folder / "record.csv"
     # repr: the shortest decimal that reads back as the same double, so the CLI reads these values.
