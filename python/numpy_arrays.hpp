@@ -3,6 +3,7 @@
 //! into it), so a result outlives the C++ objects it came from.
 #include <pybind11/numpy.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
