@@ -20,11 +20,13 @@ def run_cli(*arguments, cwd=None):
 
 
 def read_datasets(path, group):
-    """Every dataset under `group` of an HDF5 file, by its path below the group; strings as str."""
+    """Every dataset under `group` of an HDF5 file, by its path below the group; strings as
+    str. Dimension scales are left out: they label other datasets' axes (for xarray), the
+    module's arrays are the data themselves."""
     out = {}
     with h5py.File(path, "r") as f:
         def visit(name, item):
-            if isinstance(item, h5py.Dataset):
+            if isinstance(item, h5py.Dataset) and not h5py.h5ds.is_scale(item.id):
                 data = item[()]
                 if item.dtype.kind in ("O", "S"):
                     data = [d.decode() if isinstance(d, bytes) else d for d in np.atleast_1d(data)]
