@@ -13,6 +13,7 @@ packages=(
   python3 python3-h5py python3-matplotlib python3-numpy
   python3-scipy  # bench/compare_scipy.py: the peer for one asperity-run
   python3-xarray python3-h5netcdf  # outputs open as labelled arrays (test Io.OutputsOpenInXarray)
+  pybind11-dev python3-dev python3-pytest  # the Python module (python/) and its tests
 )
 
 missing=()

@@ -63,7 +63,10 @@ std::vector<GridPoint> prepare_grid(const StudyFile& base, const WorkLimits& lim
     const std::vector<double> values = settings.grid_values(g);
     for (std::size_t a = 0; a < values.size(); ++a) grid[g].overrides.push_back({settings.sweep[a].parameter, values[a]});
     try {
-      grid[g].study = grid[g].overrides.empty() ? base : read_study_file(base.file, std::nullopt, grid[g].overrides);
+      // From the study's text as first read (as run_realisation does), not the file again: a
+      // study given as text (the Python module) has no file, and one edited meanwhile must
+      // not split a grid between two versions.
+      grid[g].study = grid[g].overrides.empty() ? base : parse_study_file(base.text, base.file, std::nullopt, grid[g].overrides);
       check_point_work(grid[g].study, limits);  // before anything the size of the run is allocated
       check_analysis_interval(grid[g].study);
     } catch (const InputError& e) {

@@ -1,6 +1,7 @@
 # The installed tree stands on its own: `cmake --install` into a temporary prefix, the
 # prefix moved elsewhere (so no path the build knew exists any more), then the moved
-# binary runs a shipped example study and plots its output with the installed scripts.
+# binary runs a shipped example study and plots its output with the installed scripts,
+# and the installed Python package (when built) imports and runs it too.
 # Fails unless each step exits 0 and its product exists, and if the installed binary
 # names the source or build tree (a compiled-in absolute path would break once moved).
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -46,4 +47,9 @@ foreach(product fig2_k155.h5 fig2_k155.png gw_vb10.h5 gw_vb10.png)
     message(FATAL_ERROR "missing ${WORK_DIR}/results/${product}")
   endif()
 endforeach()
+# The Python package (when built): imports from the moved tree and runs the same study.
+if(PYTHON_PACKAGE_DIR)
+  run_step("python3 -c 'import stengmc'" ${CMAKE_COMMAND} -E env "PYTHONPATH=${prefix}/${PYTHON_PACKAGE_DIR}"
+           /usr/bin/python3 -c "import stengmc; assert stengmc.__file__.startswith('${prefix}'), stengmc.__file__; stengmc.load_study('${prefix}/share/stengmc/examples/studies/paper/fig2_k155.toml').run()")
+endif()
 message(STATUS "installed, moved, ran and plotted from ${prefix}")

@@ -1,0 +1,49 @@
+# The Python module in use: the cells of docs/python.md, runnable as a script from the
+# repository's root (`PYTHONPATH=build/python /usr/bin/python3 docs/python_example.py`) or
+# cell by cell in an editor that knows `# %%`. tests/python/test_example.py runs it and
+# checks that docs/python.md shows these cells and exactly the output they print.
+
+# %% One realisation: numpy arrays and the summary the command line prints
+import tomllib
+
+import numpy as np
+
+import stengmc
+
+study = stengmc.load_study("studies/paper/fig2_k155.toml")
+run = study.run()
+print(run)
+print(run.time_s.shape, run.traces["x_m"].shape, run.asperities["stiffness_n_per_m"])
+print(f"V_rms {run.summary['voltage_rms_v']:.4g} V, peak {run.summary['voltage_peak_v']:.4g} V, "
+      f"{len(run.events['kind'])} stick/slip events")
+
+# %% A random surface: realisation 2 of the Greenwood-Williamson example
+run = stengmc.load_study("studies/surfaces/gw_vb10.toml").run(realisation=2)
+slides = run.asperities["slip_fraction"] > 0
+print(f"{slides.sum()} of {slides.size} asperities slide; their median stiffness "
+      f"{np.median(run.asperities['stiffness_n_per_m'][slides]):.4g} N/m")
+
+# %% A study edited as a dict: the quick ensemble, one grid point, 8 realisations
+with open("studies/ensembles/identifiability_quick.toml", "rb") as f:
+    quick = tomllib.load(f)
+del quick["ensemble"]["sweep"]
+quick["ensemble"]["realisations"] = 8
+ensemble = stengmc.load_study(quick, name="studies/ensembles/quick_8.toml").run_ensemble(threads=2)
+v = ensemble.summary["voltage_rms_v"]
+print(ensemble)
+print(f"V_rms mean {v['mean'][0]:.4g} V, 95 % CI [{v['mean_low'][0]:.4g}, {v['mean_high'][0]:.4g}] ({v['mean_method'][0]})")
+print("FFT identifiable per realisation:", ensemble.realisations["fft_identifiable"])
+
+# %% The inverse estimator on a measured record (here the shipped demo CSV)
+t, voltage = np.loadtxt("studies/inverse/demo_record.csv", delimiter=",", skiprows=1, unpack=True)
+estimate = stengmc.invert(voltage, known="studies/inverse/demo_device.toml", time_s=t)
+count = estimate["count"]
+print(f"n = {count['estimate']} (90 % interval {count['interval_low']}-{count['interval_high']}), "
+      f"P(n = {count['estimate']}) = {count['probability'][count['counts'] == count['estimate']][0]:.3f}")
+print("k [N/m]:", np.round(estimate["lines"]["stiffness_n_per_m"], 2))
+
+# %% Bad input is a ValueError naming the file and the key
+try:
+    stengmc.load_study({"duration_s": 1e-3, "sample_rate_hz": -1.0}, name="my_study.toml")
+except ValueError as error:
+    print(type(error).__name__, "-", error)

@@ -1,0 +1,13 @@
+#pragma once
+//! The parts of the extension `stengmc._core`, one per file; module.cpp calls each once.
+#include <pybind11/pybind11.h>
+
+namespace stengmc::python {
+
+void bind_errors(pybind11::module_& m);    //!< errors.cpp: C++ exceptions -> stengmc.errors
+void bind_study(pybind11::module_& m);     //!< study_binding.cpp: Study, read_study, parse_study
+void bind_run(pybind11::module_& m);       //!< run_binding.cpp: one realisation
+void bind_ensemble(pybind11::module_& m);  //!< ensemble_binding.cpp: an [ensemble] study
+void bind_invert(pybind11::module_& m);    //!< invert_binding.cpp: the inverse estimator
+
+}  // namespace stengmc::python

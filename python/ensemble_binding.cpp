@@ -1,0 +1,249 @@
+// stengmc._core.run_ensemble: an [ensemble] study's realisations (ensemble/ensemble_runner.hpp)
+// on threads, with the records and statistics `stengmc run` writes to the ensemble file
+// (io/ensemble_file.hpp), as nested dicts of numpy arrays named as the file's datasets.
+#include <pybind11/stl.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+
+#include "bindings.hpp"
+#include "ensemble/ensemble_runner.hpp"
+#include "ensemble/ensemble_summary.hpp"
+#include "ensemble/sweep.hpp"
+#include "numpy_arrays.hpp"
+
+namespace py = pybind11;
+
+namespace stengmc::python {
+
+namespace {
+
+//! A private folder for the runner's journals, removed with everything in it: the module
+//! returns its results instead of writing a file, so nothing is kept to resume from.
+class JournalFolder {
+ public:
+  JournalFolder() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "stengmc-python-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw Error("cannot create a folder for the ensemble journal in " + pattern);
+    path_ = pattern;
+  }
+  ~JournalFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  JournalFolder(const JournalFolder&) = delete;
+  JournalFolder& operator=(const JournalFolder&) = delete;
+  [[nodiscard]] std::string journal(std::size_t point, std::size_t count) const {
+    return journal_path((path_ / "ensemble.h5").string(), point, count);
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+//! /realisations/ and /asperities/ of the ensemble file: one entry per realisation (by
+//! grid point, then id) and the per-asperity columns flat over them.
+void add_records(py::dict& out, const std::vector<GridPoint>& grid) {
+  std::vector<std::int64_t> points, ids, valid, offsets{0};
+  std::vector<std::string> failures;
+  std::vector<const RealisationRecord*> records;
+  for (std::size_t g = 0; g < grid.size(); ++g)
+    for (const RealisationRecord& r : grid[g].run.records) {
+      points.push_back(static_cast<std::int64_t>(g));
+      ids.push_back(static_cast<std::int64_t>(r.realisation));
+      valid.push_back(r.valid ? 1 : 0);
+      failures.push_back(r.failure);
+      offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
+      records.push_back(&r);
+    }
+  py::dict realisations;
+  realisations["grid_point"] = to_numpy(std::move(points));
+  realisations["realisation"] = to_numpy(std::move(ids));
+  realisations["valid"] = to_numpy(std::move(valid));
+  realisations["failure"] = failures;
+  realisations["asperity_offset"] = to_numpy(std::move(offsets));
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    std::vector<double> values;
+    for (const RealisationRecord* r : records) values.push_back(r->scalars[k]);
+    realisations[py::str(std::string(scalar_info(static_cast<Scalar>(k)).name))] = to_numpy(std::move(values));
+  }
+  py::dict asperities;
+  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
+    std::vector<double> values;
+    for (const RealisationRecord* r : records) values.insert(values.end(), r->asperities[c].begin(), r->asperities[c].end());
+    asperities[py::str(std::string(column_info(static_cast<AsperityColumn>(c)).name))] = to_numpy(std::move(values));
+  }
+  out["realisations"] = realisations;
+  out["asperities"] = asperities;
+}
+
+//! /traces/: the kept traces, keyed "realisation_<r>" (under "point_<g>" in a sweep).
+void add_traces(py::dict& out, const std::vector<GridPoint>& grid) {
+  py::dict traces;
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    py::dict point;
+    for (const RealisationRecord& r : grid[g].run.records) {
+      if (r.time_s.empty()) continue;
+      py::dict trace;
+      trace["time_s"] = to_numpy(r.time_s);
+      trace["voltage_v"] = to_numpy(r.voltage_v);
+      trace["charge_c"] = to_numpy(r.charge_c);
+      if (!r.measured_voltage_v.empty()) trace["measured_voltage_v"] = to_numpy(r.measured_voltage_v);
+      point[py::str("realisation_" + std::to_string(r.realisation))] = trace;
+    }
+    if (grid.size() == 1) traces = point;
+    else traces[py::str("point_" + std::to_string(g))] = point;
+  }
+  out["traces"] = traces;
+}
+
+//! One interval per grid point as <name>, <name>_low, <name>_high, <name>_known, <name>_method.
+void add_intervals(py::dict& group, const std::string& name, const std::vector<GridPoint>& grid,
+                   const std::function<const Interval&(const GridPoint&)>& pick) {
+  std::vector<double> estimate, low, high;
+  std::vector<std::int64_t> known;
+  std::vector<std::string> methods;
+  for (const GridPoint& point : grid) {
+    const Interval& i = pick(point);
+    estimate.push_back(i.estimate);
+    low.push_back(i.low);
+    high.push_back(i.high);
+    known.push_back(i.known ? 1 : 0);
+    methods.push_back(i.method);
+  }
+  group[py::str(name)] = to_numpy(std::move(estimate));
+  group[py::str(name + "_low")] = to_numpy(std::move(low));
+  group[py::str(name + "_high")] = to_numpy(std::move(high));
+  group[py::str(name + "_known")] = to_numpy(std::move(known));
+  group[py::str(name + "_method")] = methods;
+}
+
+//! /summary/: every scalar's statistics, the pooled ratios and the target, per grid point.
+void add_summary(py::dict& out, const std::vector<GridPoint>& grid) {
+  py::dict summary;
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    py::dict s;
+    std::vector<std::int64_t> count;
+    std::vector<double> min, max;
+    for (const GridPoint& point : grid) {
+      const ScalarSummary& v = point.summary.scalars[k];
+      count.push_back(static_cast<std::int64_t>(v.count));
+      min.push_back(v.min);
+      max.push_back(v.max);
+    }
+    s["count"] = to_numpy(std::move(count));
+    s["min"] = to_numpy(std::move(min));
+    s["max"] = to_numpy(std::move(max));
+    add_intervals(s, "mean", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
+    add_intervals(s, "std", grid,
+                  [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].standard_deviation; });
+    add_intervals(s, "median", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
+    add_intervals(s, "p05", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
+    add_intervals(s, "p95", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
+    summary[py::str(std::string(scalar_info(static_cast<Scalar>(k)).name))] = s;
+  }
+  py::dict pooled;
+  add_intervals(pooled, "fft_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
+  add_intervals(pooled, "hr_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
+  add_intervals(pooled, "valid_fraction", grid, [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
+  summary["pooled"] = pooled;
+  std::vector<double> width;
+  std::vector<std::int64_t> met;
+  for (const GridPoint& point : grid) {
+    width.push_back(point.run.target_half_width_reached);
+    met.push_back(point.run.target_met ? 1 : 0);
+  }
+  py::dict target;
+  target["half_width"] = to_numpy(std::move(width));
+  target["met"] = to_numpy(std::move(met));
+  summary["target"] = target;
+  out["summary"] = summary;
+}
+
+//! /grid/ of a sweep, and the table `stengmc run` prints for each point.
+void add_grid(py::dict& out, const StudyFile& base, const std::vector<GridPoint>& grid) {
+  std::string text;
+  std::size_t run = 0, valid = 0;
+  double seconds = 0.0;
+  for (const GridPoint& point : grid) {
+    if (grid.size() > 1) text += "point " + describe_grid_point(point) + ":\n";
+    text += format_ensemble_summary(point.summary, point.run);
+    run += point.run.records.size();
+    valid += point.summary.valid;
+    seconds += point.run.seconds;
+  }
+  if (!base.ensemble->sweep.empty()) {
+    py::list names;
+    for (const SweepAxis& axis : base.ensemble->sweep) names.append(axis.parameter);
+    std::vector<std::vector<double>> values;
+    for (const GridPoint& point : grid) {
+      values.emplace_back();
+      for (const ParameterOverride& o : point.overrides) values.back().push_back(o.value);
+    }
+    py::dict g;
+    g["parameter"] = names;
+    g["values"] = rows_to_numpy(values);
+    out["grid"] = g;
+  }
+  if (!base.ensemble->draws.empty()) {
+    // /draws/: each [[ensemble.draw]]'s value per realisation, in the order of "realisations".
+    py::list names;
+    for (const DrawAxis& d : base.ensemble->draws) names.append(d.parameter);
+    std::vector<std::vector<double>> rows;
+    for (const GridPoint& point : grid)
+      for (const RealisationRecord& r : point.run.records) {
+        rows.emplace_back();
+        for (const DrawAxis& d : base.ensemble->draws) {
+          const RecordExtra* e = r.extra("draw:" + d.parameter);
+          rows.back().push_back(e && !e->values.empty() ? e->values.front() : 0.0);
+        }
+      }
+    py::dict d;
+    d["parameter"] = names;
+    d["values"] = rows_to_numpy(rows);
+    out["draws"] = d;
+  }
+  out["realisations_requested"] = base.ensemble->realisations;
+  out["realisations_run"] = run;
+  out["valid_realisations"] = valid;
+  out["threads"] = grid.front().run.threads;
+  out["seconds"] = seconds;
+  out["text"] = text;
+}
+
+py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
+  if (!base.ensemble)
+    throw InputError(base.file + ": has no [ensemble] table: run one realisation with run(), or add [ensemble]");
+  if (threads < 0) throw InputError("threads = " + std::to_string(threads) + ": expected 0 (every core) or more");
+  std::vector<GridPoint> grid;
+  {
+    py::gil_scoped_release release;
+    const JournalFolder journals;
+    grid = prepare_grid(base);
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+      EnsembleOptions options{.threads = threads, .restart = true, .show_progress = progress,
+                              .limits = WorkLimits{}};
+      if (grid.size() > 1) options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
+      grid[g].run = run_ensemble(grid[g].study, journals.journal(g, grid.size()), options);
+      grid[g].summary = summarise_ensemble(grid[g].run.records, base.seed);
+    }
+  }
+  py::dict out;
+  add_records(out, grid);
+  add_traces(out, grid);
+  add_summary(out, grid);
+  add_grid(out, base, grid);
+  return out;
+}
+
+}  // namespace
+
+void bind_ensemble(py::module_& m) {
+  m.def("run_ensemble", &run_ensemble_study, py::arg("study"), py::arg("threads") = 0, py::arg("progress") = false,
+        "Runs every realisation of an [ensemble] study (each grid point of a sweep) on `threads` threads "
+        "(0: OMP_NUM_THREADS or every core); the ensemble file's records and statistics as dicts");
+}
+
+}  // namespace stengmc::python

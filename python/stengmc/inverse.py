@@ -1,0 +1,30 @@
+"""The inverse estimator on a measured record (README: inverse estimation)."""
+import os
+
+import numpy as np
+
+from . import _core
+
+
+def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank=None, name="record"):
+    """How many asperities slide, and their stiffnesses, from one record of a known device.
+
+    voltage_v        the measured voltage [V] (1-D)
+    known            the known device's study file (with its [inverse] prior)
+    sample_rate_hz   the record's sample rate [Hz], its first sample at start_s [s]; or
+    time_s           the sample times [s] (uniform, as `stengmc invert` demands of a CSV)
+    bank             a calibration bank from `stengmc calibrate` (None: uncalibrated answer)
+
+    Returns a dict named as the inverse file's /inverse/ datasets: count (counts,
+    probability = P(n), estimate, interval_low, interval_high, ...), lines (stiffness_n_per_m
+    and its 90 % interval stiffness_low/high, frequency_hz, ...), stiffness (median,
+    sd_log and their intervals, laws), record (noise, SNR), verdict, warnings, model_v.
+    """
+    voltage = np.asarray(voltage_v, dtype=np.float64)
+    if (sample_rate_hz is None) == (time_s is None):
+        raise TypeError("invert: give sample_rate_hz or time_s (one of them)")
+    if time_s is None:
+        times = start_s + np.arange(voltage.size, dtype=np.float64) / float(sample_rate_hz)
+    else:
+        times = np.asarray(time_s, dtype=np.float64)
+    return _core.invert(os.fspath(known), times, voltage, None if bank is None else os.fspath(bank), name)

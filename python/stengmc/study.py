@@ -1,0 +1,50 @@
+"""A study: read from a file, from TOML text, or from a dict (README: study files)."""
+import os
+
+from . import _core
+from .results import Ensemble, Run
+from .toml_text import toml_text
+
+
+class Study:
+    """A study read and checked by the library; run it with run() or run_ensemble().
+
+    Attributes: file, text (the TOML), title, seed, duration_s, sample_rate_hz, model,
+    surface_file, output_file, random_surface, is_ensemble, realisations.
+    """
+
+    def __init__(self, core_study):
+        self._study = core_study
+
+    def __getattr__(self, name):
+        if name.startswith("_"):  # not set yet (copy, pickle): no delegation
+            raise AttributeError(name)
+        return getattr(self._study, name)
+
+    def run(self, realisation=0, progress=False):
+        """Runs one realisation (as `stengmc run --realisation R`); a Run."""
+        return Run(_core.run(self._study, realisation, progress))
+
+    def run_ensemble(self, threads=0, progress=False):
+        """Runs every realisation of the [ensemble] (0 threads: every core); an Ensemble.
+        The records are the same for any number of threads."""
+        return Ensemble(_core.run_ensemble(self._study, threads, progress))
+
+    def __repr__(self):
+        return f"<stengmc.Study {self.file!r}: {self.model}, {self.duration_s:g} s at {self.sample_rate_hz:g} Hz>"
+
+
+def load_study(source, name="study.toml"):
+    """A study from a file path, TOML text (a str with a line break) or a dict.
+
+    For text and dicts, `name` stands for the file in messages, and relative paths in it
+    (a surface file) are taken from that name's folder (the working folder by default).
+    Raises stengmc.InputError (a ValueError) naming the file, the line and the key.
+    """
+    if isinstance(source, dict):
+        return Study(_core.parse_study(toml_text(source), os.fspath(name)))
+    if isinstance(source, str) and "\n" in source:
+        return Study(_core.parse_study(source, os.fspath(name)))
+    if isinstance(source, (str, os.PathLike)):
+        return Study(_core.read_study(os.fspath(source)))
+    raise TypeError(f"load_study: expected a path, TOML text or a dict, got a {type(source).__name__}")

@@ -1,0 +1,101 @@
+"""The module's ensemble is the command line's ensemble file, bitwise: every record
+(/realisations, /asperities), kept trace and statistic (/summary), on 1 and 2 threads
+(the records depend on the study and the realisation id alone, README: ensembles), from
+the study's file and from its text."""
+import tomllib
+
+import numpy as np
+
+from conftest import assert_bitwise, read_datasets, run_cli, source
+
+
+def small_ensemble_text(realisations=4):
+    """studies/ensembles/identifiability_quick.toml shrunk: 20 us records, a two-point sweep
+    of the count, four realisations each, [noise] and [spectrum] as shipped, one kept
+    trace: a second or two."""
+    import stengmc
+    with open(source("studies", "ensembles", "identifiability_quick.toml"), "rb") as f:
+        study = tomllib.load(f)
+    study["duration_s"] = 20e-6
+    study["surface"]["file"] = source("surfaces", "lognormal_count.toml")
+    study["ensemble"] = {"realisations": realisations, "trace_realisations": [1],
+                         "sweep": [{"parameter": "surface.summits.count", "values": [2, 3]}]}
+    return stengmc.toml_text(study)
+
+
+# The module's names for the trace datasets (the file's /traces/<point>/realisation_<r>/<name>).
+TRACE_NAMES = {"time": "time_s", "voltage": "voltage_v", "charge": "charge_c", "measured_voltage": "measured_voltage_v"}
+
+
+def lookup(ensemble, path):
+    """The module's value for a dataset path of the ensemble file."""
+    parts = path.split("/")
+    value = getattr(ensemble, parts[0])
+    for key in parts[1:-1]:
+        value = value[key]
+    last = TRACE_NAMES[parts[-1]] if parts[0] == "traces" else parts[-1]
+    return value[last]
+
+
+def test_ensemble_equals_the_command_line_file_bitwise(stengmc, tmp_path):
+    text = small_ensemble_text()
+    study_path = tmp_path / "ensemble.toml"
+    study_path.write_text(text)
+    out = tmp_path / "ensemble.h5"
+    run_cli("run", study_path, "--out", out, "--threads", 2)
+
+    # The study from its file on one thread, from its text (no file read) on two.
+    from_file = stengmc.load_study(study_path)
+    from_text = stengmc.load_study(text, name=str(tmp_path / "not_written.toml"))
+    for threads, study in ((1, from_file), (2, from_text)):
+        ensemble = study.run_ensemble(threads=threads)
+        assert ensemble.threads == threads
+        compared = 0
+        for group in ("realisations", "asperities", "traces", "summary", "grid"):
+            for name, data in read_datasets(out, group).items():
+                assert_bitwise(lookup(ensemble, f"{group}/{name}"), data, f"{group}/{name} on {threads} threads")
+                compared += 1
+        # 2 x 4 realisations: every scalar, column, statistic; one trace per point.
+        assert compared > 300
+        assert len(ensemble.realisations["realisation"]) == 8
+        assert set(ensemble.traces) == {"point_0", "point_1"}
+        assert "realisation_1" in ensemble.traces["point_0"]
+
+
+def test_summary_counts_match_the_records(stengmc, tmp_path):
+    # The statistics are over the valid realisations: their count per point is the records'.
+    study_path = tmp_path / "ensemble.toml"
+    study_path.write_text(small_ensemble_text())
+    ensemble = stengmc.load_study(study_path).run_ensemble(threads=2)
+    r = ensemble.realisations
+    for point in (0, 1):
+        valid = np.sum(r["valid"][r["grid_point"] == point])
+        assert ensemble.summary["voltage_rms_v"]["count"][point] == valid
+
+
+def test_python_threads_run_while_the_ensemble_computes(stengmc, tmp_path):
+    # The GIL is released around the C++: a Python thread ticking every ~10 ms gets many
+    # ticks in while the ensemble runs (~0.5 s). With the GIL held it would get at most the
+    # one or two the interpreter's 5 ms switch interval allows at the call's edges.
+    import threading
+    import time
+    study = stengmc.load_study(small_ensemble_text(realisations=100), name=str(tmp_path / "ensemble.toml"))
+    ticks, stop = [], threading.Event()
+
+    def ticker():
+        while not stop.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.01)
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    try:
+        start = time.monotonic()
+        study.run_ensemble(threads=1)
+        end = time.monotonic()
+    finally:
+        stop.set()
+        thread.join()
+    inside = [t for t in ticks if start < t < end]
+    assert end - start > 0.2, "the ensemble ran too briefly to tell"
+    assert len(inside) >= 10, f"{len(inside)} ticks in {end - start:.2f} s"

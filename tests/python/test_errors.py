@@ -1,0 +1,74 @@
+"""Bad input raises stengmc.InputError (a ValueError) with the library's message naming
+the file and the key; a model leaving its domain raises stengmc.ModelError; a study given
+as a dict is the study of the file it was read from (the serializer loses nothing)."""
+import tomllib
+
+import numpy as np
+import pytest
+
+from conftest import source
+
+FIG2 = "studies/paper/fig2_k155.toml"
+
+
+def fig2_dict():
+    with open(source(FIG2), "rb") as f:
+        return tomllib.load(f)
+
+
+def test_a_bad_value_names_the_file_and_the_key(stengmc, tmp_path):
+    text = open(source(FIG2)).read().replace("sample_rate_hz = 100e6", "sample_rate_hz = -100e6")
+    path = tmp_path / "bad_rate.toml"
+    path.write_text(text)
+    with pytest.raises(stengmc.InputError) as caught:
+        stengmc.load_study(path)
+    assert isinstance(caught.value, ValueError)
+    assert str(path) in str(caught.value) and "sample_rate_hz" in str(caught.value)
+
+
+def test_an_unknown_key_in_a_dict_names_the_given_name_and_the_key(stengmc):
+    study = fig2_dict()
+    study["model"]["static_fricton"] = 0.3  # misspelt
+    with pytest.raises(ValueError, match=r"my_study\.toml.*static_fricton"):
+        stengmc.load_study(study, name="my_study.toml")
+
+
+def test_a_missing_file_is_an_input_error(stengmc, tmp_path):
+    with pytest.raises(stengmc.InputError, match="no_such_study.toml"):
+        stengmc.load_study(tmp_path / "no_such_study.toml")
+
+
+def test_x_reaching_l_under_policy_error_is_a_model_error(stengmc):
+    # Fig. 2's asperity reaches 0.79 l of l = 50 um (its run summary); with l = 5 um it
+    # leaves the element's domain, which policy "error" (the default) refuses.
+    study = fig2_dict()
+    study["surface"]["asperity"][0]["length_m"] = 5e-6
+    with pytest.raises(stengmc.ModelError, match="reache"):
+        stengmc.load_study(study, name=source(FIG2)).run()
+
+
+def test_a_dict_study_runs_as_the_file_it_came_from(stengmc):
+    # tomllib (Python's own reader) is the reference for what the file says.
+    from_file = stengmc.load_study(source(FIG2)).run()
+    from_dict = stengmc.load_study(fig2_dict(), name=source(FIG2)).run()
+    assert np.array_equal(from_file.voltage_v, from_dict.voltage_v)
+    assert np.array_equal(from_file.traces["x_m"], from_dict.traces["x_m"])
+
+
+def test_toml_text_reads_back_as_the_same_dict():
+    import stengmc
+    study = {"duration_s": 1e-3, "seed": 7, "title": 'a "quoted" title\nand a line', "flag": True,
+             "model": {"kind": "model2", "values": [0.1, 1e-300, 3]},
+             "surface": {"asperity": [{"stiffness_n_per_m": 155.0}, {"stiffness_n_per_m": 1 / 3}]}}
+    assert tomllib.loads(stengmc.toml_text(study)) == study
+
+
+def test_ensemble_of_a_plain_study_is_an_input_error(stengmc):
+    with pytest.raises(stengmc.InputError, match=r"fig2_k155\.toml.*no \[ensemble\]"):
+        stengmc.load_study(source(FIG2)).run_ensemble()
+
+
+def test_invert_refuses_a_two_dimensional_record(stengmc):
+    with pytest.raises(stengmc.InputError, match="my_record: voltage_v: expected a one-dimensional array"):
+        stengmc.invert(np.zeros((2, 100)), known=source("studies/inverse/demo_device.toml"),
+                       time_s=np.arange(100) * 1e-8, name="my_record")
