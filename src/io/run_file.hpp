@@ -24,6 +24,8 @@ struct Provenance {
   std::string surface_file; //!< the surface file a study drew from ("" if inline or none)
   std::string surface_text; //!< that file's text, verbatim
   std::string auxiliary_inputs;  //!< files the surface read (histograms), "<path>\n<text>" each
+  std::string netlist_file; //!< the `[circuit] netlist` load ("" when the built-in load ran)
+  std::string netlist_text; //!< that file's text, verbatim
 };
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);
