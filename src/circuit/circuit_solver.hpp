@@ -1,11 +1,9 @@
 #pragma once
 //! The S-TENG elements in parallel on a load R (|| C_L), MODEL.md §2.
 #include <cstddef>
-#include <memory>
 #include <span>
 #include <vector>
 
-#include "circuit/netlist_load.hpp"
 #include "model/asperity.hpp"
 #include "model/motion.hpp"
 
@@ -18,8 +16,6 @@ struct CircuitParams {
   double load_resistance_ohm = 1e6;  //!< R [Ohm] (paper: 1 MOhm)
   double load_capacitance_f = 0.0;   //!< C_L in parallel with R [F]; 0 for none
   std::size_t substeps = 4;          //!< Radau IIA steps per output interval (and per breakpoint piece)
-  //! A load netlist solved by ngspice instead (`[circuit] netlist`; R and C_L unused), or none.
-  std::shared_ptr<const NetlistLoad> netlist;
 };
 
 //! The circuit's response on the output times.

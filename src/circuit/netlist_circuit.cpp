@@ -99,9 +99,14 @@ NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, 
   for (std::size_t i = 0; i < elements.size(); ++i)
     for (std::string& card : steng_element_cards(i, elements[i], "external")) transient.cards.push_back(std::move(card));
   for (std::string& card : steng_port_cards(std::string(STENG_PORT_NODE))) transient.cards.push_back(std::move(card));
-  transient.cards.insert(transient.cards.end(), load.lines.begin(), load.lines.end());
+  transient.card_origins.assign(transient.cards.size(), "");
+  for (std::size_t k = 0; k < load.lines.size(); ++k) {
+    transient.cards.push_back(load.lines[k]);
+    transient.card_origins.push_back(k < load.line_numbers.size() ? load.file + ":" + std::to_string(load.line_numbers[k]) : load.file);
+  }
   for (std::string& card : transient_cards(run.settings)) transient.cards.push_back(std::move(card));
   transient.cards.push_back(".end");
+  transient.card_origins.resize(transient.cards.size(), "");
 
   std::vector<std::string> source_names;
   for (std::size_t i = 0; i < elements.size(); ++i) source_names.push_back(steng_displacement_source_name(i));

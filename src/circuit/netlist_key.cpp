@@ -10,8 +10,8 @@
 
 namespace stengmc {
 
-void read_netlist_key(TomlTable& circuit, const std::string& study_file, CircuitParams& params) {
-  if (!circuit.has("netlist")) return;
+std::shared_ptr<const NetlistLoad> read_netlist_key(TomlTable& circuit, const std::string& study_file) {
+  if (!circuit.has("netlist")) return nullptr;
   for (const char* built_in : {"load_resistance_ohm", "load_capacitance_f"})
     if (circuit.has(built_in))
       circuit.fail("netlist", std::string("replaces the built-in load: remove ") + built_in +
@@ -25,7 +25,7 @@ void read_netlist_key(TomlTable& circuit, const std::string& study_file, Circuit
   if (!in || std::filesystem::is_directory(path))
     circuit.fail("netlist", "= \"" + name + "\": cannot read it (looked for " + path.string() + ")");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  params.netlist = std::make_shared<const NetlistLoad>(parse_netlist_load(text, path.string()));
+  return std::make_shared<const NetlistLoad>(parse_netlist_load(text, path.string()));
 }
 
 }  // namespace stengmc

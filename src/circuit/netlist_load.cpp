@@ -41,7 +41,7 @@ bool names_port(const std::string& card) {
 }  // namespace
 
 NetlistLoad parse_netlist_load(const std::string& text, const std::string& file) {
-  NetlistLoad load{file, text, {}};
+  NetlistLoad load{file, text, {}, {}};
   std::istringstream in(text);
   std::string line;
   std::size_t number = 0;
@@ -65,6 +65,7 @@ NetlistLoad parse_netlist_load(const std::string& text, const std::string& file)
                        "netlist recorded in the output is complete");
     port = port || names_port(card);
     load.lines.push_back(line);
+    load.line_numbers.push_back(number);
   }
   if (!port)
     throw InputError(file + ": no element connects to the S-TENG port node '" + std::string(STENG_PORT_NODE) +

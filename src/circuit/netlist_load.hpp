@@ -17,6 +17,7 @@ struct NetlistLoad {
   std::string file;                //!< where it was read from (messages, provenance)
   std::string text;                //!< the file, verbatim (recorded in every output)
   std::vector<std::string> lines;  //!< the circuit cards handed to ngspice: no title, no .end
+  std::vector<std::size_t> line_numbers;  //!< each card's line in the file (1-based), for messages
 };
 
 //! Checks a load netlist's text and splits it into the cards ngspice receives. As in any

@@ -98,8 +98,20 @@ std::string last_lines(const std::string& text, std::size_t count) {
   return text.substr(start + 1);
 }
 
+//! "file:line" of the card ngspice's first "Error on line N" is about, or "".
+std::string error_origin(const NgspiceTransient& transient) {
+  constexpr std::string_view marker = "Error on line ";
+  const std::size_t at = session.errors.find(marker);
+  if (at == std::string::npos) return "";
+  std::size_t line = 0;
+  for (std::size_t k = at + marker.size(); k < session.errors.size() && std::isdigit(static_cast<unsigned char>(session.errors[k])); ++k)
+    line = line * 10 + static_cast<std::size_t>(session.errors[k] - '0');
+  return line >= 1 && line <= transient.card_origins.size() ? transient.card_origins[line - 1] : "";
+}
+
 [[noreturn]] void fail(const NgspiceTransient& transient, const std::string& what) {
-  std::string message = transient.origin + ": ngspice: " + what;
+  const std::string origin = error_origin(transient);
+  std::string message = (origin.empty() ? transient.origin : origin) + ": ngspice: " + what;
   if (!session.errors.empty()) message += "\nngspice said:\n" + last_lines(session.errors, 12);
   throw InputError(message);
 }
@@ -120,7 +132,8 @@ NgspiceVectors run_locked(const NgspiceTransient& transient) {
     ngSpice_Init_Sync(on_external_voltage, on_external_current, nullptr, &ident, nullptr);
     initialised = true;
   }
-  session = Session{&transient};
+  session = Session{};
+  session.transient = &transient;
   // Leftovers of an earlier run (its circuit and plots) would be found by name otherwise.
   command("destroy all");
   command("remcirc");

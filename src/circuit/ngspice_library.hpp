@@ -24,6 +24,9 @@ struct NgspiceTransient {
   std::vector<std::string> vectors;  //!< names as ngspice knows them: "v(steng)", "vsense#branch", "@d1[id]"
   double stop_time_s = 0.0;          //!< the transient's end: a run that stops earlier is an error
   std::string origin;                //!< what messages blame (the user's netlist file)
+  //! Where each card came from ("file:line", or "" for stengmc's own), so that ngspice's
+  //! "Error on line N" can be traced to the user's file; empty or one per card.
+  std::vector<std::string> card_origins;
 };
 
 //! The accepted time points and the wanted vectors on them.

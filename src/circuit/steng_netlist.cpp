@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
+#include <charconv>
 
 namespace stengmc {
 
 std::string spice_number(double value) {
+  // The shortest text that reads back as the same double.
   std::array<char, 32> buffer{};
-  std::snprintf(buffer.data(), buffer.size(), "%.17g", value);
-  return buffer.data();
+  const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value).ptr;
+  return std::string(buffer.data(), end);
 }
 
 std::vector<std::string> steng_subcircuit_cards(double epsilon0_f_per_m) {

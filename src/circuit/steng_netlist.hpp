@@ -61,7 +61,7 @@ SpiceTransientSettings choose_transient(std::span<const StengElement> elements, 
 //! The `.options` and `.tran` cards of `settings`.
 std::vector<std::string> transient_cards(const SpiceTransientSettings& settings);
 
-//! Full double precision, so ngspice reads exactly the number we hold.
+//! Every digit a double needs (shortest round trip), so ngspice reads exactly the number we hold.
 std::string spice_number(double value);
 
 }  // namespace stengmc

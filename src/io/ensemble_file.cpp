@@ -156,9 +156,8 @@ void write_ensemble_file(const std::string& path, const Study& base, const std::
                           .seed = base.seed,
                           .surface_file = base.surface_file,
                           .surface_text = base.surface_text,
-                          .auxiliary_inputs = base.surface->auxiliary_inputs(),
-                          .netlist_file = base.circuit.netlist ? base.circuit.netlist->file : "",
-                          .netlist_text = base.circuit.netlist ? base.circuit.netlist->text : ""});
+                          .auxiliary_inputs = base.surface->auxiliary_inputs()});
+  write_netlist_provenance(file, base.netlist);
   const EnsembleSettings& e = *base.ensemble;
   std::size_t run = 0, valid = 0;
   bool stopped = false;

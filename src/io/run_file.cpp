@@ -75,10 +75,12 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
   file.attribute("/", "surface_file", provenance.surface_file);
   file.attribute("/", "surface_text", provenance.surface_text);
   if (!provenance.auxiliary_inputs.empty()) file.attribute("/", "surface_auxiliary_inputs", provenance.auxiliary_inputs);
-  if (!provenance.netlist_file.empty()) {
-    file.attribute("/", "netlist_file", provenance.netlist_file);
-    file.attribute("/", "netlist_text", provenance.netlist_text);
-  }
+}
+
+void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const NetlistLoad>& netlist) {
+  if (!netlist) return;
+  file.attribute("/", "netlist_file", netlist->file);
+  file.attribute("/", "netlist_text", netlist->text);
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
@@ -93,13 +95,9 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
   file.write("/circuit/charge", circuit.charge_c, "C");
   if (traces.current) file.write("/asperity/current", circuit.current_a, "A");
   if (traces.charge) file.write("/asperity/charge", circuit.element_charge_c, "C");
-  if (params.netlist) {
-    file.attribute("/circuit", "load", "netlist");  // solved by ngspice; the root's netlist_text holds it
-  } else {
-    file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
-    file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
-    file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
-  }
+  file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
+  file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
+  file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
   file.attribute("/circuit", "samples", static_cast<std::int64_t>(circuit.voltage_v.size()));
 }
 
@@ -111,9 +109,8 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
                           .seed = study.seed,
                           .surface_file = study.surface_file,
                           .surface_text = study.surface_text,
-                          .auxiliary_inputs = study.surface->auxiliary_inputs(),
-                          .netlist_file = study.circuit.netlist ? study.circuit.netlist->file : "",
-                          .netlist_text = study.circuit.netlist ? study.circuit.netlist->text : ""});
+                          .auxiliary_inputs = study.surface->auxiliary_inputs()});
+  write_netlist_provenance(file, study.netlist);
   file.attribute("/", "title", study.title);
   file.attribute("/", "realisation", static_cast<std::int64_t>(study.realisation));
   file.attribute("/", "domain_policy", domain_policy_name(study.domain_policy));
@@ -156,6 +153,9 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
              column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }), "1");
 
   write_circuit(file, result.circuit, study.circuit, traces);
+  // R, C_L and substeps above are then the built-in load's, unused: ngspice solved the
+  // root's netlist_text.
+  if (study.netlist) file.attribute("/circuit", "load", "netlist");
   if (!result.measured_voltage_v.empty()) {
     file.write("/circuit/measured_voltage", result.measured_voltage_v, "V");
     file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);

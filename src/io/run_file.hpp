@@ -1,6 +1,7 @@
 #pragma once
 //! The output file of a run (layout: README, "Output files"). Format version 1.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,11 +25,13 @@ struct Provenance {
   std::string surface_file; //!< the surface file a study drew from ("" if inline or none)
   std::string surface_text; //!< that file's text, verbatim
   std::string auxiliary_inputs;  //!< files the surface read (histograms), "<path>\n<text>" each
-  std::string netlist_file; //!< the `[circuit] netlist` load ("" when the built-in load ran)
-  std::string netlist_text; //!< that file's text, verbatim
 };
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);
+
+//! The root attributes netlist_file and netlist_text: a study's `[circuit] netlist`,
+//! recorded beside its text (nothing when it has none).
+void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const NetlistLoad>& netlist);
 
 //! /asperity/{sigma,d0,w,l}: the element parameters.
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements);

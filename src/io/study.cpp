@@ -163,7 +163,7 @@ void read_circuit(TomlTable& root, Study& study) {
   c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
   c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
   if (c.substeps > 1000) circuit->fail("substeps", "= " + std::to_string(c.substeps) + " must be <= 1000");
-  read_netlist_key(*circuit, study.file, c);
+  study.netlist = read_netlist_key(*circuit, study.file);
   const std::string input = circuit->choice("input", "actual", {"actual", "imposed"});
   study.circuit_input = input == "actual" ? CircuitInput::actual : CircuitInput::imposed;
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)

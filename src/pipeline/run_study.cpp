@@ -99,7 +99,7 @@ struct Keep {
 
 Keep what_to_keep(const Study& study, const RunOptions& options) {
   // A netlist load is solved by ngspice after the tribology, from the motions themselves.
-  if (!options.keep_traces) return {.motion = study.circuit.netlist != nullptr};
+  if (!options.keep_traces) return {.motion = study.netlist != nullptr};
   const OutputTraces& t = study.traces;
   const bool current_spectra = study.spectrum && study.spectrum->element_currents;
   return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
@@ -272,7 +272,7 @@ RunResult run_study(const Study& study, const RunOptions& options) {
                    [](const Event& a, const Event& b) { return a.time_s < b.time_s; });
 
   const auto circuit_start = Clock::now();
-  if (study.circuit.netlist) {
+  if (study.netlist) {
     std::vector<const Motion*> inputs;
     std::vector<StengElement> elements;
     for (std::size_t i = 0; i < n; ++i) {
@@ -280,7 +280,7 @@ RunResult run_study(const Study& study, const RunOptions& options) {
                                                                      : result.trajectories[i].motion.get());
       elements.push_back(study.asperities[i].element);
     }
-    result.circuit = solve_netlist_circuit(elements, inputs, times.first(result.circuit_samples), *study.circuit.netlist,
+    result.circuit = solve_netlist_circuit(elements, inputs, times.first(result.circuit_samples), *study.netlist,
                                            keep.circuit_samples)
                          .circuit;
   } else {
