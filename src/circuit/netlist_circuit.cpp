@@ -90,7 +90,8 @@ NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, 
   // hand it linear interpolation, whose piecewise-constant velocity is a first-order
   // error in V (omega dt / 2, ~6 % at 2 MHz and 10 ns; MODEL.md §2), and every PWL
   // knot forces a step (NGSPICE-NOTES: cost grows faster than the knot count). The
-  // external source gives ngspice the same x(t) the built-in solver integrates.
+  // external source gives ngspice the same x(t) the built-in solver integrates. Written
+  // as plain `external`: libngspice 39 (Debian) segfaults on `dc 0 external` (measured).
   NgspiceTransient transient;
   transient.origin = load.file;
   transient.stop_time_s = duration;
