@@ -9,7 +9,7 @@ packages=(
   libhdf5-dev libtomlplusplus-dev libcli11-dev
   libomp-dev libopenmpi-dev openmpi-bin  # for the ensemble runner (OpenMP, MPI) and spectra (FFTW)
   libgtest-dev libgmock-dev libbenchmark-dev
-  ngspice
+  ngspice libngspice0-dev  # the independent circuit reference (tests) and [circuit] netlist loads
   python3 python3-h5py python3-matplotlib python3-numpy
   python3-scipy  # bench/compare_scipy.py: the peer for one asperity-run
   python3-xarray python3-h5netcdf  # outputs open as labelled arrays (test Io.OutputsOpenInXarray)

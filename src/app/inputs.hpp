@@ -13,6 +13,7 @@ inline std::vector<NamedInput> study_inputs(const Study& study) {
   std::vector<NamedInput> inputs{{study.file, "the study"}, {study.surface_file, "the surface file the study names"}};
   for (const std::string& file : study.surface->auxiliary_input_files())
     inputs.push_back({file, "a histogram file the surface reads"});
+  if (study.netlist) inputs.push_back({study.netlist->file, "the load netlist the study names"});
   return inputs;
 }
 

@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   stengmc::app::add_calibrate_command(app);
   stengmc::app::add_invert_command(app);
   stengmc::app::add_merge_command(app);
+  stengmc::app::add_export_netlist_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -158,6 +158,7 @@ void write_ensemble_file(const std::string& path, const StudyFile& base, const s
                           .surface_file = base.surface_file,
                           .surface_text = base.surface_text,
                           .auxiliary_inputs = base.surface->auxiliary_inputs()});
+  write_netlist_provenance(file, base.netlist);
   const EnsembleSettings& e = *base.ensemble;
   std::size_t run = 0, valid = 0;
   bool stopped = false;

@@ -78,6 +78,12 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
   if (!provenance.auxiliary_inputs.empty()) file.attribute("/", "surface_auxiliary_inputs", provenance.auxiliary_inputs);
 }
 
+void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const NetlistLoad>& netlist) {
+  if (!netlist) return;
+  file.attribute("/", "netlist_file", netlist->file);
+  file.attribute("/", "netlist_text", netlist->text);
+}
+
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {
   file.write("/asperity/sigma", column(elements, [](const StengElement& e) { return e.charge_density_c_per_m2; }));
   file.write("/asperity/d0", column(elements, [](const StengElement& e) { return e.effective_thickness_m; }));
@@ -105,6 +111,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
                           .surface_file = study.surface_file,
                           .surface_text = study.surface_text,
                           .auxiliary_inputs = study.surface->auxiliary_inputs()});
+  write_netlist_provenance(file, study.netlist);
   file.attribute("/", "title", study.title);
   file.attribute("/", "realisation", static_cast<std::int64_t>(study.realisation));
   file.attribute("/", "domain_policy", domain_policy_name(study.domain_policy));
@@ -147,6 +154,9 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
              column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }));
 
   write_circuit(file, result.circuit, study.circuit, traces);
+  // R, C_L and substeps above are then the built-in load's, unused: ngspice solved the
+  // root's netlist_text.
+  if (study.netlist) file.attribute("/circuit", "load", "netlist");
   if (!result.measured_voltage_v.empty()) {
     file.write("/circuit/measured_voltage", result.measured_voltage_v);
     file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);

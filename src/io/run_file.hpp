@@ -1,6 +1,7 @@
 #pragma once
 //! The output file of a run (layout: docs/output-files.md). Format version 1.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct Provenance {
 };
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);
+
+//! The root attributes netlist_file and netlist_text: a study's `[circuit] netlist`,
+//! recorded beside its text (nothing when it has none).
+void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const NetlistLoad>& netlist);
 
 //! /asperity/{sigma,d0,w,l}: the element parameters.
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements);

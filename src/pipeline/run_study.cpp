@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "circuit/element_sums.hpp"
+#include "circuit/netlist_circuit.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "tribology/domain_check.hpp"
@@ -97,7 +98,8 @@ struct Keep {
 };
 
 Keep what_to_keep(const Study& study, const RunOptions& options) {
-  if (!options.keep_traces) return {};
+  // A netlist load is solved by ngspice after the tribology, from the motions themselves.
+  if (!options.keep_traces) return {.motion = study.netlist != nullptr};
   const OutputTraces& t = study.traces;
   const bool current_spectra = study.spectrum && study.spectrum->element_currents;
   return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
@@ -270,7 +272,18 @@ RunResult run_study(const Study& study, const RunOptions& options) {
                    [](const Event& a, const Event& b) { return a.time_s < b.time_s; });
 
   const auto circuit_start = Clock::now();
-  {
+  if (study.netlist) {
+    std::vector<const Motion*> inputs;
+    std::vector<StengElement> elements;
+    for (std::size_t i = 0; i < n; ++i) {
+      inputs.push_back(study.circuit_input == CircuitInput::imposed ? result.drives[i].get()
+                                                                     : result.trajectories[i].motion.get());
+      elements.push_back(study.asperities[i].element);
+    }
+    result.circuit = solve_netlist_circuit(elements, inputs, times.first(result.circuit_samples), *study.netlist,
+                                           keep.circuit_samples)
+                         .circuit;
+  } else {
     std::optional<Progress> progress;
     if (options.show_progress) progress.emplace("circuit", result.circuit_samples);
     SummedCircuit circuit = solve_summed_circuit(sums, result.circuit_samples, study.circuit, progress ? &*progress : nullptr);

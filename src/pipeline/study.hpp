@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "circuit/circuit_solver.hpp"
+#include "circuit/netlist_load.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "core/toml_reader.hpp"
 #include "model/asperity.hpp"
@@ -79,6 +80,7 @@ struct Study {
   Population population;                   //!< that realisation: summits, contact, asperities
   std::vector<Asperity> asperities;        //!< the asperities a run simulates (= population.asperities)
   CircuitParams circuit;
+  std::shared_ptr<const NetlistLoad> netlist;  //!< [circuit] netlist: the load ngspice solves instead of R || C_L
   CircuitInput circuit_input = CircuitInput::actual;
   DomainPolicy domain_policy = DomainPolicy::error;
   std::string output_file;    //!< where `run` writes, unless the command line says otherwise

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "circuit/netlist_key.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -116,6 +117,7 @@ void read_circuit(TomlTable& root, Study& study) {
   c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
   c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
   if (c.substeps > 1000) circuit->fail("substeps", "= " + std::to_string(c.substeps) + " must be <= 1000");
+  study.netlist = read_netlist_key(*circuit, study.file);
   study.circuit_input = circuit->enumeration("input", study.circuit_input, CIRCUIT_INPUT_NAMES);
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
     circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");
