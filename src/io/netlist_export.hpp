@@ -3,7 +3,7 @@
 //! netlist (README: "ngspice netlist"), for users who stay in their circuit simulator.
 #include <string>
 
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 
 namespace stengmc {

@@ -21,7 +21,7 @@
 #include "core/hdf5_file.hpp"
 #include "core/hdf5_file.hpp"
 #include "io/netlist_export.hpp"
-#include "io/study.hpp"
+#include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
 #include "support/cli_runner.hpp"
 #include "tribology/sampled_motion.hpp"
