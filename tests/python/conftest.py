@@ -19,14 +19,23 @@ def run_cli(*arguments, cwd=None):
     return done.stdout
 
 
+PURE_DIMENSION = b"This is a netCDF dimension but not a netCDF variable."
+
+
+def is_pure_dimension(dataset):
+    name = dataset.attrs.get("NAME", b"")
+    name = name if isinstance(name, bytes) else str(name).encode()
+    return h5py.h5ds.is_scale(dataset.id) and name.startswith(PURE_DIMENSION)
+
+
 def read_datasets(path, group):
     """Every dataset under `group` of an HDF5 file, by its path below the group; strings as
-    str. Dimension scales are left out: they label other datasets' axes (for xarray), the
-    module's arrays are the data themselves."""
+    str. netCDF's pure dimensions are left out: datasets without values that only name other
+    datasets' axes (for xarray). Coordinates (time, frequency, ...) are data and stay."""
     out = {}
     with h5py.File(path, "r") as f:
         def visit(name, item):
-            if isinstance(item, h5py.Dataset) and not h5py.h5ds.is_scale(item.id):
+            if isinstance(item, h5py.Dataset) and not is_pure_dimension(item):
                 data = item[()]
                 if item.dtype.kind in ("O", "S"):
                     data = [d.decode() if isinstance(d, bytes) else d for d in np.atleast_1d(data)]
