@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
+#include "ensemble/record_table.hpp"
 #include "ensemble/sweep.hpp"
 #include "numpy_arrays.hpp"
 
@@ -46,35 +47,19 @@ class JournalFolder {
 //! /realisations/ and /asperities/ of the ensemble file: one entry per realisation (by
 //! grid point, then id) and the per-asperity columns flat over them.
 void add_records(py::dict& out, const std::vector<GridPoint>& grid) {
-  std::vector<std::int64_t> points, ids, valid, offsets{0};
-  std::vector<std::string> failures;
-  std::vector<const RealisationRecord*> records;
-  for (std::size_t g = 0; g < grid.size(); ++g)
-    for (const RealisationRecord& r : grid[g].run.records) {
-      points.push_back(static_cast<std::int64_t>(g));
-      ids.push_back(static_cast<std::int64_t>(r.realisation));
-      valid.push_back(r.valid ? 1 : 0);
-      failures.push_back(r.failure);
-      offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
-      records.push_back(&r);
-    }
+  RecordTable t = tabulate_records(grid);
   py::dict realisations;
-  realisations["grid_point"] = to_numpy(std::move(points));
-  realisations["realisation"] = to_numpy(std::move(ids));
-  realisations["valid"] = to_numpy(std::move(valid));
-  realisations["failure"] = failures;
-  realisations["asperity_offset"] = to_numpy(std::move(offsets));
-  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
-    std::vector<double> values;
-    for (const RealisationRecord* r : records) values.push_back(r->scalars[k]);
-    realisations[py::str(std::string(scalar_info(static_cast<Scalar>(k)).name))] = to_numpy(std::move(values));
-  }
+  realisations["grid_point"] = to_numpy(std::move(t.grid_point));
+  realisations["realisation"] = to_numpy(std::move(t.realisation));
+  realisations["valid"] = to_numpy(std::move(t.valid));
+  realisations["failure"] = t.failure;
+  realisations["asperity_offset"] = to_numpy(std::move(t.asperity_offset));
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k)
+    realisations[py::str(std::string(scalar_info(static_cast<Scalar>(k)).name))] = to_numpy(std::move(t.scalars[k]));
   py::dict asperities;
-  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
-    std::vector<double> values;
-    for (const RealisationRecord* r : records) values.insert(values.end(), r->asperities[c].begin(), r->asperities[c].end());
-    asperities[py::str(std::string(column_info(static_cast<AsperityColumn>(c)).name))] = to_numpy(std::move(values));
-  }
+  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c)
+    asperities[py::str(std::string(column_info(static_cast<AsperityColumn>(c)).name))] =
+        to_numpy(std::move(t.asperities[c]));
   out["realisations"] = realisations;
   out["asperities"] = asperities;
 }

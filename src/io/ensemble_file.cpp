@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "core/hdf5_file.hpp"
+#include "ensemble/record_table.hpp"
 #include "io/run_file.hpp"
 #include "io/output_vocabulary.hpp"
 
@@ -26,35 +27,16 @@ void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoin
 }
 
 void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
-  std::vector<std::int64_t> points, ids, valid, offsets{0};
-  std::vector<std::string> failures;
-  std::vector<const RealisationRecord*> records;
-  for (std::size_t g = 0; g < grid.size(); ++g)
-    for (const RealisationRecord& r : grid[g].run.records) {
-      points.push_back(static_cast<std::int64_t>(g));
-      ids.push_back(static_cast<std::int64_t>(r.realisation));
-      valid.push_back(r.valid ? 1 : 0);
-      failures.push_back(r.failure);
-      offsets.push_back(offsets.back() + static_cast<std::int64_t>(r.asperity_count()));
-      records.push_back(&r);
-    }
-  f.write("/realisations/grid_point", points);
-  f.write("/realisations/realisation", ids);
-  f.write("/realisations/valid", valid);
-  f.write("/realisations/failure", failures);
-  f.write("/realisations/asperity_offset", offsets);
-  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
-    std::vector<double> values;
-    for (const RealisationRecord* r : records) values.push_back(r->scalars[k]);
-    const ScalarInfo& info = scalar_info(static_cast<Scalar>(k));
-    f.write("/realisations/" + std::string(info.name), values);
-  }
-  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c) {
-    std::vector<double> values;
-    for (const RealisationRecord* r : records) values.insert(values.end(), r->asperities[c].begin(), r->asperities[c].end());
-    const ScalarInfo& info = column_info(static_cast<AsperityColumn>(c));
-    f.write("/asperities/" + std::string(info.name), values);
-  }
+  const RecordTable t = tabulate_records(grid);
+  f.write("/realisations/grid_point", t.grid_point);
+  f.write("/realisations/realisation", t.realisation);
+  f.write("/realisations/valid", t.valid);
+  f.write("/realisations/failure", t.failure);
+  f.write("/realisations/asperity_offset", t.asperity_offset);
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k)
+    f.write("/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name), t.scalars[k]);
+  for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c)
+    f.write("/asperities/" + std::string(column_info(static_cast<AsperityColumn>(c)).name), t.asperities[c]);
 }
 
 //! [[ensemble.draw]] values, one row per realisation in /realisations order.
