@@ -2,27 +2,17 @@
 #include "surface/distribution.hpp"
 
 #include <algorithm>
-#include <boost/math/distributions/gamma.hpp>
-#include <boost/math/distributions/lognormal.hpp>
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/weibull.hpp>
-#include <boost/math/special_functions/gamma.hpp>
-#include <boost/random/gamma_distribution.hpp>
-#include <boost/random/lognormal_distribution.hpp>
-#include <boost/random/normal_distribution.hpp>
 #include <boost/random/uniform_int_distribution.hpp>
 #include <boost/random/uniform_real_distribution.hpp>
-#include <boost/random/weibull_distribution.hpp>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "surface/standard_normal.hpp"
 
 namespace stengmc {
-
-namespace bm = boost::math;
 
 namespace {
 
@@ -31,10 +21,6 @@ constexpr double MIN_MASS = 1e-12;  // truncations keeping less than this are re
 // Uniform on the open interval (0, 1) from the top 53 bits: (k + 1/2) 2^-53, so that
 // quantiles of unbounded laws stay finite. A fixed algorithm, like Boost's.
 double open_uniform(RandomEngine& engine) { return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53; }
-
-// Standard normal cdf and density, safe at ±infinity.
-double phi_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
-double phi_pdf(double z) { return std::isinf(z) ? 0.0 : std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI); }
 
 double binomial(int n, int k) {
   double c = 1.0;
@@ -46,45 +32,42 @@ double binomial(int n, int k) {
 
 // ---------------------------------------------------------------- construction
 
-Distribution::Distribution(Kind kind, double a, double b, double min, double max)
-    : kind_(kind), a_(a), b_(b), min_(min), max_(max) {}
+Distribution::Distribution(Kind kind, double min, double max) : kind_(kind), min_(min), max_(max) {}
+
+Distribution Distribution::continuous(std::string_view name, double first, double second, double min, double max) {
+  const ContinuousFamily* family = find_continuous_family(name);
+  if (!family) throw Error("Distribution::continuous: no family named " + std::string(name));
+  Distribution d(Kind::continuous, family->support_lower, INFINITY);
+  d.family_ = family;
+  d.law_ = family->make(first, second);
+  d.set_truncation(std::max(min, family->support_lower), max);
+  return d;
+}
 
 Distribution Distribution::normal(double mean, double std, double min, double max) {
-  if (!(std > 0.0)) throw InputError("normal distribution: std = " + format_number(std) + " must be > 0");
-  Distribution d(Kind::normal, mean, std, -INFINITY, INFINITY);
-  d.set_truncation(min, max);
-  return d;
+  return continuous("normal", mean, std, min, max);
 }
 
 Distribution Distribution::lognormal(double median, double sigma_log, double min, double max) {
-  if (!(median > 0.0)) throw InputError("lognormal distribution: median = " + format_number(median) + " must be > 0");
-  if (!(sigma_log > 0.0)) throw InputError("lognormal distribution: sigma_log = " + format_number(sigma_log) + " must be > 0");
-  Distribution d(Kind::lognormal, median, sigma_log, 0.0, INFINITY);
-  d.set_truncation(std::max(min, 0.0), max);
-  return d;
-}
-
-namespace {
-//! Gamma and Weibull share their parameters (shape, scale > 0) and support [0, inf).
-void check_shape_and_scale(const char* name, double shape, double scale) {
-  if (!(shape > 0.0)) throw InputError(std::string(name) + " distribution: shape = " + format_number(shape) + " must be > 0");
-  if (!(scale > 0.0)) throw InputError(std::string(name) + " distribution: scale = " + format_number(scale) + " must be > 0");
-}
-}  // namespace
-
-Distribution Distribution::shape_scale(Kind kind, double shape, double scale, double min, double max) {
-  check_shape_and_scale(kind == Kind::gamma ? "gamma" : "weibull", shape, scale);
-  Distribution d(kind, shape, scale, 0.0, INFINITY);
-  d.set_truncation(std::max(min, 0.0), max);
-  return d;
+  return continuous("lognormal", median, sigma_log, min, max);
 }
 
 Distribution Distribution::gamma(double shape, double scale, double min, double max) {
-  return shape_scale(Kind::gamma, shape, scale, min, max);
+  return continuous("gamma", shape, scale, min, max);
 }
 
 Distribution Distribution::weibull(double shape, double scale, double min, double max) {
-  return shape_scale(Kind::weibull, shape, scale, min, max);
+  return continuous("weibull", shape, scale, min, max);
+}
+
+std::string_view Distribution::kind_name() const {
+  switch (kind_) {
+    case Kind::continuous: return family_->name;
+    case Kind::uniform: return "uniform";
+    case Kind::fixed: return "fixed";
+    case Kind::empirical: break;
+  }
+  return "empirical";
 }
 
 Distribution Distribution::uniform(double min, double max) {
@@ -100,7 +83,7 @@ Distribution Distribution::fixed(std::vector<double> values) {
   for (double v : values)
     if (!std::isfinite(v)) throw InputError("fixed distribution: value " + format_number(v) + " is not finite");
   std::sort(values.begin(), values.end());
-  Distribution d(Kind::fixed, 0.0, 0.0, values.front(), values.back());
+  Distribution d(Kind::fixed, values.front(), values.back());
   d.values_ = std::move(values);
   return d;
 }
@@ -119,7 +102,7 @@ Distribution Distribution::empirical(std::vector<Bin> bins) {
     total += b.weight;
   }
   if (!(total > 0.0)) throw InputError("empirical distribution: the weights sum to zero");
-  Distribution d(Kind::empirical, 0.0, 0.0, bins.front().lower, bins.back().upper);
+  Distribution d(Kind::empirical, bins.front().lower, bins.back().upper);
   double running = 0.0;
   for (Bin& b : bins) {
     b.weight /= total;
@@ -129,6 +112,19 @@ Distribution Distribution::empirical(std::vector<Bin> bins) {
   d.cumulative_.back() = 1.0;  // exact, whatever the rounding of the sum
   d.bins_ = std::move(bins);
   return d;
+}
+
+// The family's law at x, with the infinite ends (untruncated sides) exact.
+double Distribution::base_cdf(double x) const {
+  if (x == INFINITY) return 1.0;
+  if (x == -INFINITY) return 0.0;
+  return law_->cdf(x);
+}
+
+double Distribution::base_sf(double x) const {
+  if (x == INFINITY) return 0.0;
+  if (x == -INFINITY) return 1.0;
+  return law_->sf(x);
 }
 
 void Distribution::set_truncation(double min, double max) {
@@ -146,60 +142,6 @@ void Distribution::set_truncation(double min, double max) {
   if (!(mass_ >= MIN_MASS))
     throw InputError("truncation to [" + format_number(min_) + ", " + format_number(max_) + "] leaves probability " + format_number(mass_) +
                      " < 1e-12");
-}
-
-// ---------------------------------------------------------------- the untruncated laws
-
-double Distribution::base_cdf(double x) const {
-  if (x == INFINITY) return 1.0;
-  if (x == -INFINITY) return 0.0;
-  switch (kind_) {
-    case Kind::normal: return bm::cdf(bm::normal(a_, b_), x);
-    case Kind::lognormal: return x <= 0.0 ? 0.0 : bm::cdf(bm::lognormal(std::log(a_), b_), x);
-    case Kind::gamma: return x <= 0.0 ? 0.0 : bm::cdf(bm::gamma_distribution<>(a_, b_), x);
-    case Kind::weibull: return x <= 0.0 ? 0.0 : bm::cdf(bm::weibull(a_, b_), x);
-    default: return 0.0;  // histogram kinds do not use the base law
-  }
-}
-
-double Distribution::base_sf(double x) const {
-  if (x == INFINITY) return 0.0;
-  if (x == -INFINITY) return 1.0;
-  switch (kind_) {
-    case Kind::normal: return bm::cdf(bm::complement(bm::normal(a_, b_), x));
-    case Kind::lognormal: return x <= 0.0 ? 1.0 : bm::cdf(bm::complement(bm::lognormal(std::log(a_), b_), x));
-    case Kind::gamma: return x <= 0.0 ? 1.0 : bm::cdf(bm::complement(bm::gamma_distribution<>(a_, b_), x));
-    case Kind::weibull: return x <= 0.0 ? 1.0 : bm::cdf(bm::complement(bm::weibull(a_, b_), x));
-    default: return 1.0;
-  }
-}
-
-double Distribution::base_pdf(double x) const {
-  switch (kind_) {
-    case Kind::normal: return bm::pdf(bm::normal(a_, b_), x);
-    case Kind::lognormal: return x <= 0.0 ? 0.0 : bm::pdf(bm::lognormal(std::log(a_), b_), x);
-    case Kind::gamma: return x <= 0.0 ? 0.0 : bm::pdf(bm::gamma_distribution<>(a_, b_), x);
-    case Kind::weibull: return x <= 0.0 ? 0.0 : bm::pdf(bm::weibull(a_, b_), x);
-    default: return 0.0;
-  }
-}
-
-double Distribution::base_quantile(double p) const {
-  switch (kind_) {
-    case Kind::normal: return bm::quantile(bm::normal(a_, b_), p);
-    case Kind::lognormal: return bm::quantile(bm::lognormal(std::log(a_), b_), p);
-    case Kind::gamma: return bm::quantile(bm::gamma_distribution<>(a_, b_), p);
-    default: return bm::quantile(bm::weibull(a_, b_), p);
-  }
-}
-
-double Distribution::base_quantile_complement(double q) const {
-  switch (kind_) {
-    case Kind::normal: return bm::quantile(bm::complement(bm::normal(a_, b_), q));
-    case Kind::lognormal: return bm::quantile(bm::complement(bm::lognormal(std::log(a_), b_), q));
-    case Kind::gamma: return bm::quantile(bm::complement(bm::gamma_distribution<>(a_, b_), q));
-    default: return bm::quantile(bm::complement(bm::weibull(a_, b_), q));
-  }
 }
 
 // ---------------------------------------------------------------- sampling and evaluation
@@ -221,18 +163,15 @@ double Distribution::from_probability(double p, double q) const {
     return std::clamp(b.lower + (b.upper - b.lower) * (p - below) / b.weight, b.lower, b.upper);
   }
   const double lower_target = cdf_min_ + p * mass_;
-  const double x = lower_target <= 0.5 ? base_quantile(lower_target)
-                                       : base_quantile_complement(std::max(sf_max_ + q * mass_, 1e-300));
+  const double x = lower_target <= 0.5 ? law_->quantile(lower_target)
+                                       : law_->quantile_complement(std::max(sf_max_ + q * mass_, 1e-300));
   return std::clamp(x, min_, max_);
 }
 
 double Distribution::sample(RandomEngine& engine) const {
   if (!truncated_) {
     switch (kind_) {
-      case Kind::normal: return boost::random::normal_distribution<double>(a_, b_)(engine);
-      case Kind::lognormal: return boost::random::lognormal_distribution<double>(std::log(a_), b_)(engine);
-      case Kind::gamma: return boost::random::gamma_distribution<double>(a_, b_)(engine);
-      case Kind::weibull: return boost::random::weibull_distribution<double>(a_, b_)(engine);
+      case Kind::continuous: return law_->sample(engine);
       case Kind::uniform: return boost::random::uniform_real_distribution<double>(min_, max_)(engine);
       case Kind::fixed:
         return values_[boost::random::uniform_int_distribution<std::size_t>(0, values_.size() - 1)(engine)];
@@ -269,40 +208,16 @@ double Distribution::pdf(double x) const {
       if (x >= b.lower && x < b.upper) return b.weight / (b.upper - b.lower);
     return 0.0;
   }
-  return base_pdf(x) / mass_;
+  return law_->pdf(x) / mass_;
 }
 
-// E[Y^k; min <= X <= max] / mass for the standardised variable Y (normal: (X − mean)/std;
-// others: X/scale, X/median), from closed-form partial moments:
-//   normal     M_k = (k−1) M_{k−2} + a^{k−1}φ(a) − b^{k−1}φ(b)   (integration by parts)
-//   lognormal  E[Y^k; ·] = e^{k²s²/2} [Φ((ln b − k s²)/s) − Φ((ln a − k s²)/s)]
-//   gamma      E[Y^k; ·] = Γ(α+k)/Γ(α) [P(α+k, b) − P(α+k, a)]
-//   weibull    E[Y^k; ·] = Γ(1+k/β) [P(1+k/β, b^β) − P(1+k/β, a^β)]
-// (P the regularised lower incomplete gamma function; a, b the standardised bounds.)
+// E[Y^k; min <= X <= max] / mass for the standardised variable Y = (X - location)/scale of
+// the family, from its closed-form partial moments (continuous_law.hpp).
 double Distribution::standard_partial_moment(int k) const {
   if (k == 0) return 1.0;
-  if (kind_ == Kind::normal) {
-    const double lo = (min_ - a_) / b_, hi = (max_ - a_) / b_;
-    auto term = [](double z, int power) { return std::isinf(z) ? 0.0 : std::pow(z, power) * phi_pdf(z); };
-    double m_prev = mass_, m = phi_pdf(lo) - phi_pdf(hi);  // M_0, M_1 (unnormalised)
-    for (int j = 2; j <= k; ++j) {
-      const double next = (j - 1) * m_prev + term(lo, j - 1) - term(hi, j - 1);
-      m_prev = m;
-      m = next;
-    }
-    return m / mass_;
-  }
-  const double lo = min_ / (kind_ == Kind::lognormal ? a_ : b_), hi = max_ / (kind_ == Kind::lognormal ? a_ : b_);
-  if (kind_ == Kind::lognormal) {
-    const double s = b_, shift = k * s * s;
-    auto z = [&](double y) { return y <= 0.0 ? -INFINITY : (std::log(y) - shift) / s; };
-    return std::exp(0.5 * k * k * s * s) * (phi_cdf(z(hi)) - phi_cdf(z(lo))) / mass_;
-  }
-  const double order = kind_ == Kind::gamma ? a_ + k : 1.0 + k / a_;
-  auto arg = [&](double y) { return kind_ == Kind::gamma ? y : std::pow(y, a_); };
-  auto p = [&](double y) { return std::isinf(y) ? 1.0 : bm::gamma_p(order, arg(y)); };
-  const double factor = kind_ == Kind::gamma ? bm::tgamma_ratio(a_ + k, a_) : bm::tgamma(order);
-  return factor * (p(hi) - p(lo)) / mass_;
+  const double location = law_->location(), scale = law_->scale();
+  const double lo = (min_ - location) / scale, hi = (max_ - location) / scale;
+  return law_->standard_partial_moment(k, lo, hi, mass_);
 }
 
 double Distribution::mean() const {
@@ -317,7 +232,7 @@ double Distribution::mean() const {
     return s;
   }
   const double m1 = standard_partial_moment(1);
-  return kind_ == Kind::normal ? a_ + b_ * m1 : (kind_ == Kind::lognormal ? a_ : b_) * m1;
+  return law_->location() + law_->scale() * m1;
 }
 
 double Distribution::variance() const { return central_moment(2); }
@@ -338,7 +253,7 @@ double Distribution::central_moment(int k) const {
   }
   // Binomial expansion about the standardised mean; Y is O(1), so the cancellation costs
   // about (mean/std)^k relative — negligible for the spreads of asperity populations.
-  const double scale = kind_ == Kind::lognormal ? a_ : b_;
+  const double scale = law_->scale();
   const double mu = standard_partial_moment(1);
   for (int j = 0; j <= k; ++j) sum += binomial(k, j) * standard_partial_moment(j) * std::pow(-mu, k - j);
   return std::pow(scale, k) * sum;

@@ -20,24 +20,22 @@
 //! with Boost.Math quantiles, and cdf/pdf/moments are those of the truncated law.
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "core/name_table.hpp"
 #include "core/random_stream.hpp"
 #include "core/toml_reader.hpp"
+#include "surface/continuous_law.hpp"
 
 namespace stengmc {
 
 class Distribution {
  public:
-  enum class Kind { normal, lognormal, uniform, gamma, weibull, fixed, empirical };
-  //! `kind` in surface files.
-  static constexpr NameTable KIND_NAMES{std::array{
-      NamedValue<Kind>{Kind::normal, "normal"}, NamedValue<Kind>{Kind::lognormal, "lognormal"},
-      NamedValue<Kind>{Kind::uniform, "uniform"}, NamedValue<Kind>{Kind::gamma, "gamma"},
-      NamedValue<Kind>{Kind::weibull, "weibull"}, NamedValue<Kind>{Kind::fixed, "fixed"},
-      NamedValue<Kind>{Kind::empirical, "empirical"}}};
+  //! A continuous family (continuous_law.hpp: normal, lognormal, gamma, weibull, ...,
+  //! registered by name), or one of the laws given by values.
+  enum class Kind { continuous, uniform, fixed, empirical };
 
   //! One histogram bin: density uniform on [lower, upper), total weight `weight` (>= 0).
   struct Bin {
@@ -60,6 +58,8 @@ class Distribution {
 
   // Direct construction (tests, programmatic surfaces). Bad arguments throw InputError
   // without a location. `min`/`max` truncate; infinities mean "not truncated".
+  //! A registered continuous family by name (its parameters in the family's order).
+  static Distribution continuous(std::string_view family, double first, double second, double min, double max);
   static Distribution normal(double mean, double std, double min = -INFINITY, double max = INFINITY);
   static Distribution lognormal(double median, double sigma_log, double min = 0.0, double max = INFINITY);
   static Distribution uniform(double min, double max);
@@ -86,6 +86,10 @@ class Distribution {
   double central_moment(int k) const;
 
   [[nodiscard]] Kind kind() const { return kind_; }
+  //! The continuous family, or nullptr for uniform, fixed and empirical laws.
+  [[nodiscard]] const ContinuousFamily* family() const { return family_; }
+  //! The law's `kind` as surface files write it ("normal", ..., "uniform", "fixed", "empirical").
+  [[nodiscard]] std::string_view kind_name() const;
   //! The smallest / largest value that can be drawn (may be infinite).
   [[nodiscard]] double lower() const { return min_; }
   [[nodiscard]] double upper() const { return max_; }
@@ -97,21 +101,16 @@ class Distribution {
   [[nodiscard]] const std::string& source() const { return source_; }
 
  private:
-  Distribution(Kind kind, double a, double b, double min, double max);
+  Distribution(Kind kind, double min, double max);
   void set_truncation(double min, double max);
-  //! Gamma or Weibull: shape and scale > 0, support [0, inf), optionally truncated.
-  static Distribution shape_scale(Kind kind, double shape, double scale, double min, double max);
   double from_probability(double p, double q) const;
   double base_cdf(double x) const;
   double base_sf(double x) const;
-  double base_pdf(double x) const;
-  double base_quantile(double p) const;
-  double base_quantile_complement(double q) const;
   double standard_partial_moment(int k) const;
 
   Kind kind_;
-  double a_ = 0.0;  // first parameter: mean, median, shape
-  double b_ = 0.0;  // second parameter: std, sigma_log, scale
+  const ContinuousFamily* family_ = nullptr;   // continuous: its family
+  std::shared_ptr<const ContinuousLaw> law_;   // continuous: the untruncated law
   double min_ = -INFINITY;
   double max_ = INFINITY;
   bool truncated_ = false;

@@ -86,15 +86,22 @@ std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesyste
 }
 
 Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& base_dir) {
-  if (!t.has("kind")) t.fail("kind", "is missing; expected one of normal, lognormal, uniform, gamma, weibull, fixed, empirical");
-  const Kind kind = KIND_NAMES.value(t.choice("kind", "", KIND_NAMES.names()));
-  if (kind == Kind::uniform) {
+  std::vector<std::string_view> kinds;
+  for (const ContinuousFamily& f : continuous_families()) kinds.push_back(f.name);
+  kinds.insert(kinds.end(), {"uniform", "fixed", "empirical"});
+  if (!t.has("kind")) {
+    std::string allowed;
+    for (std::string_view k : kinds) allowed += (allowed.empty() ? "" : ", ") + std::string(k);
+    t.fail("kind", "is missing; expected one of " + allowed);
+  }
+  const std::string kind = t.choice("kind", "", kinds);
+  if (kind == "uniform") {
     const double lo = t.required_number("min"), hi = t.required_number("max");
     if (!(hi > lo)) t.fail("max", "= " + format_number(hi) + " must be > min = " + format_number(lo));
     return uniform(lo, hi);
   }
-  if (kind == Kind::fixed) return fixed(read_values(t, "values"));
-  if (kind == Kind::empirical) {
+  if (kind == "fixed") return fixed(read_values(t, "values"));
+  if (kind == "empirical") {
     const std::string name = t.string("file", "");
     if (name.empty()) t.fail("file", "is missing; the empirical distribution needs a histogram file");
     const std::filesystem::path path = base_dir / name;  // an absolute name replaces base_dir
@@ -110,21 +117,18 @@ Distribution Distribution::from_toml(TomlTable& t, const std::filesystem::path& 
     }
   }
   // The continuous families: two parameters and an optional truncation.
-  const bool normal_kind = kind == Kind::normal;
-  const double first = normal_kind ? t.required_number("mean")
-                                   : required_positive(t, kind == Kind::lognormal ? "median" : "shape");
-  const double second = required_positive(t, normal_kind ? "std" : kind == Kind::lognormal ? "sigma_log" : "scale");
-  const double lo = t.number("min", normal_kind ? -INFINITY : 0.0);
+  const ContinuousFamily& family = *find_continuous_family(kind);
+  const double first = family.first_may_be_negative ? t.required_number(family.first_key)
+                                                    : required_positive(t, family.first_key);
+  const double second = required_positive(t, family.second_key);
+  const double lo = t.number("min", family.support_lower);
   const double hi = t.number("max", INFINITY);
   if (!(hi > lo)) t.fail("max", "= " + format_number(hi) + " must be > min = " + format_number(lo));
   try {
-    if (normal_kind) return normal(first, second, lo, hi);
-    if (kind == Kind::lognormal) return lognormal(first, second, lo, hi);
-    if (kind == Kind::gamma) return gamma(first, second, lo, hi);
-    return weibull(first, second, lo, hi);
+    return continuous(kind, first, second, lo, hi);
   } catch (const InputError& e) {  // only the truncation can still be wrong here
     const char* key = t.has("max") ? "max" : "min";
-    t.fail(key, "= " + format_number(key[1] == 'a' ? hi : lo) + ": " + e.what() + " under the " + std::string(KIND_NAMES.name(kind)) + " law; widen it");
+    t.fail(key, "= " + format_number(key[1] == 'a' ? hi : lo) + ": " + e.what() + " under the " + kind + " law; widen it");
   }
 }
 

@@ -114,11 +114,10 @@ void read_stiffness(TomlTable& root, RandomSurface& s, const std::filesystem::pa
   }
   s.stiffness_rule = StiffnessRule::sampled;
   s.stiffness = Distribution::from_toml(t, base_dir);
-  // Laws open at 0 (lognormal, gamma, Weibull) never draw 0; the others can draw their lower end.
+  // Laws of positive quantities (lognormal, gamma, Weibull: support from 0) never draw 0;
+  // the others can draw their lower end.
   const double lower = s.stiffness->lower();
-  const auto kind = s.stiffness->kind();
-  const bool open_at_zero = kind == Distribution::Kind::lognormal || kind == Distribution::Kind::gamma ||
-                            kind == Distribution::Kind::weibull;
+  const bool open_at_zero = s.stiffness->family() && s.stiffness->family()->support_lower == 0.0;
   if (lower < 0.0 || (!open_at_zero && lower <= 0.0))
     t.fail(t.has("min") ? "min" : "kind", "lets the law draw stiffness " + format_number(lower) +
                                               " N/m: stiffnesses must be > 0 (truncate with min > 0)");

@@ -258,11 +258,11 @@ phase = "uniform"
   EXPECT_EQ(s.count_rule, CountRule::poisson);
   EXPECT_EQ(s.position_rule, PositionRule::uniform);
   EXPECT_EQ(s.summit_density_per_m2, 5e7);
-  EXPECT_EQ(s.heights.kind(), Distribution::Kind::normal);
+  EXPECT_EQ(s.heights.kind_name(), "normal");
   EXPECT_EQ(s.heights.lower(), 0.0);
   EXPECT_EQ(s.heights.upper(), 5e-6);
   ASSERT_TRUE(s.stiffness.has_value());
-  EXPECT_EQ(s.stiffness->kind(), Distribution::Kind::weibull);
+  EXPECT_EQ(s.stiffness->kind_name(), "weibull");
   EXPECT_EQ(s.stiffness->lower(), 10.0);
   ASSERT_TRUE(s.correlation.has_value());
   EXPECT_EQ(s.correlation->rho(), 0.4);
