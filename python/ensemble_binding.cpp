@@ -87,22 +87,12 @@ void add_traces(py::dict& out, const std::vector<GridPoint>& grid) {
 //! One interval per grid point as <name>, <name>_low, <name>_high, <name>_known, <name>_method.
 void add_intervals(py::dict& group, const std::string& name, const std::vector<GridPoint>& grid,
                    const std::function<const Interval&(const GridPoint&)>& pick) {
-  std::vector<double> estimate, low, high;
-  std::vector<std::int64_t> known;
-  std::vector<std::string> methods;
-  for (const GridPoint& point : grid) {
-    const Interval& i = pick(point);
-    estimate.push_back(i.estimate);
-    low.push_back(i.low);
-    high.push_back(i.high);
-    known.push_back(i.known ? 1 : 0);
-    methods.push_back(i.method);
-  }
-  group[py::str(name)] = to_numpy(std::move(estimate));
-  group[py::str(name + "_low")] = to_numpy(std::move(low));
-  group[py::str(name + "_high")] = to_numpy(std::move(high));
-  group[py::str(name + "_known")] = to_numpy(std::move(known));
-  group[py::str(name + "_method")] = methods;
+  IntervalColumns c = tabulate_intervals(grid, pick);
+  group[py::str(name)] = to_numpy(std::move(c.estimate));
+  group[py::str(name + "_low")] = to_numpy(std::move(c.low));
+  group[py::str(name + "_high")] = to_numpy(std::move(c.high));
+  group[py::str(name + "_known")] = to_numpy(std::move(c.known));
+  group[py::str(name + "_method")] = c.method;
 }
 
 //! /summary/: every scalar's statistics, the pooled ratios and the target, per grid point.

@@ -19,4 +19,18 @@ RecordTable tabulate_records(const std::vector<GridPoint>& grid) {
   return t;
 }
 
+IntervalColumns tabulate_intervals(const std::vector<GridPoint>& grid,
+                                   const std::function<const Interval&(const GridPoint&)>& pick) {
+  IntervalColumns c;
+  for (const GridPoint& point : grid) {
+    const Interval& i = pick(point);
+    c.estimate.push_back(i.estimate);
+    c.low.push_back(i.low);
+    c.high.push_back(i.high);
+    c.known.push_back(i.known ? 1 : 0);
+    c.method.push_back(i.method);
+  }
+  return c;
+}
+
 }  // namespace stengmc

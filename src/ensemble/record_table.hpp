@@ -4,11 +4,13 @@
 //! and /asperities hold and what the Python module returns, built once for both.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "ensemble/realisation_record.hpp"
 #include "ensemble/sweep.hpp"
+#include "stats/ensemble_statistics.hpp"
 
 namespace stengmc {
 
@@ -23,5 +25,16 @@ struct RecordTable {
 };
 
 RecordTable tabulate_records(const std::vector<GridPoint>& grid);
+
+//! One interval of every grid point's summary, as the columns <name>, <name>_low,
+//! <name>_high, <name>_known, <name>_method of /summary.
+struct IntervalColumns {
+  std::vector<double> estimate, low, high;
+  std::vector<std::int64_t> known;  //!< 1 when the interval could be computed
+  std::vector<std::string> method;
+};
+
+IntervalColumns tabulate_intervals(const std::vector<GridPoint>& grid,
+                                   const std::function<const Interval&(const GridPoint&)>& pick);
 
 }  // namespace stengmc

@@ -75,22 +75,12 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
 //! One interval per grid point, as datasets <name>, <name>_low, <name>_high.
 void write_intervals(Hdf5Writer& f, const std::string& group, const std::string& name, const std::vector<GridPoint>& grid,
                      const std::function<const Interval&(const GridPoint&)>& pick) {
-  std::vector<double> estimate, low, high;
-  std::vector<std::int64_t> known;
-  std::vector<std::string> methods;
-  for (const GridPoint& point : grid) {
-    const Interval& i = pick(point);
-    estimate.push_back(i.estimate);
-    low.push_back(i.low);
-    high.push_back(i.high);
-    known.push_back(i.known ? 1 : 0);
-    methods.push_back(i.method);
-  }
-  f.write(group + "/" + name, estimate);
-  f.write(group + "/" + name + "_low", low);
-  f.write(group + "/" + name + "_high", high);
-  f.write(group + "/" + name + "_known", known);
-  f.write(group + "/" + name + "_method", methods);
+  const IntervalColumns c = tabulate_intervals(grid, pick);
+  f.write(group + "/" + name, c.estimate);
+  f.write(group + "/" + name + "_low", c.low);
+  f.write(group + "/" + name + "_high", c.high);
+  f.write(group + "/" + name + "_known", c.known);
+  f.write(group + "/" + name + "_method", c.method);
 }
 
 void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
