@@ -197,5 +197,25 @@ TEST(EnsembleDraws, BadDrawsAreRefused) {
   refused(drawn_study("[[ensemble.draw]]\nparameter = \"ensemble.realisations\"\nmin = 1\nmax = 2\n"), "cannot be drawn");
 }
 
+// The study is read in two layers (issue 10): the pipeline's reader leaves [ensemble] to the
+// ensemble layer, which reads it and rejects what it does not know. A typo there must still
+// stop the ensemble, and a run of one realisation must not need the ensemble's keys.
+TEST(StudyFile, TheEnsembleLayerChecksItsTableAndThePipelineLeavesItAlone) {
+  std::string text = drawn_study();
+  const std::string key = "realisations = 12\n";
+  text.replace(text.find(key), key.size(), key + "realisatons = 5\n");
+  try {
+    parse_study_file(text, "typo.toml", std::nullopt);
+    ADD_FAILURE() << "the misspelt [ensemble] key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown key 'ensemble.realisatons'"), std::string::npos) << e.what();
+  }
+  const Study run = parse_study(text, "typo.toml", 0);
+  EXPECT_EQ(run.asperities.size(), 1u);  // count = 1 in the file; the draws are the ensemble's
+  const StudyFile ensemble = parse_study_file(drawn_study(), "good.toml", std::nullopt);
+  ASSERT_TRUE(ensemble.ensemble.has_value());
+  EXPECT_EQ(ensemble.ensemble->realisations, 12u);
+}
+
 }  // namespace
 }  // namespace stengmc
