@@ -9,11 +9,11 @@
 
 namespace {
 
-void fig6_tribology(benchmark::State& state, stengmc::FrictionForm form, bool propagator = true) {
+void fig6_tribology(benchmark::State& state, std::string_view form, bool propagator = true) {
   const stengmc::TimeGrid grid = stengmc::TimeGrid::covering(50e-6, 100e6);
   stengmc::Model2Params params;
   params.belt_velocity_m_per_s = static_cast<double>(state.range(0));
-  params.friction_form = form;
+  params.friction_law = stengmc::find_friction_law(form);
   params.sliding_propagator = propagator;
   std::size_t steps = 0;
   std::size_t rejected = 0;
@@ -35,12 +35,12 @@ void fig6_tribology(benchmark::State& state, stengmc::FrictionForm form, bool pr
 }
 
 void BM_Fig6TribologyConsistent(benchmark::State& state) {
-  fig6_tribology(state, stengmc::FrictionForm::consistent);
+  fig6_tribology(state, "consistent");
 }
-void BM_Fig6TribologyLiteral(benchmark::State& state) { fig6_tribology(state, stengmc::FrictionForm::literal); }
+void BM_Fig6TribologyLiteral(benchmark::State& state) { fig6_tribology(state, "literal"); }
 // The previous code path: RODAS4 alone (no sliding propagator).
 void BM_Fig6TribologyRodas4Only(benchmark::State& state) {
-  fig6_tribology(state, stengmc::FrictionForm::consistent, false);
+  fig6_tribology(state, "consistent", false);
 }
 
 // Both belt velocities, medians of 5 repetitions.

@@ -51,7 +51,7 @@ py::dict asperity_table(const Computed& c) {
 
 //! The asperity x sample traces the study's [output] keeps (all by default).
 py::dict traces(const Computed& c) {
-  const OutputTraces& kept = c.study.traces;
+  const OutputTraces& kept = c.study.output.traces;
   const std::vector<Trajectory>& t = c.result.trajectories;
   py::dict out;
   if (kept.x) out["x_m"] = rows_to_numpy(column(t, [](const Trajectory& x) { return x.x_m; }));

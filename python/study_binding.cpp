@@ -18,7 +18,7 @@ void bind_study(py::module_& m) {
       .def_readonly("duration_s", &StudyFile::duration_s, "simulated time [s]")
       .def_readonly("sample_rate_hz", &StudyFile::sample_rate_hz, "output sample rate [Hz]")
       .def_readonly("surface_file", &StudyFile::surface_file, "the surface file it names, or '' when inline")
-      .def_readonly("output_file", &StudyFile::output_file, "where `stengmc run` would write")
+      .def_property_readonly("output_file", [](const StudyFile& s) { return s.output.file; }, "where `stengmc run` would write")
       .def_property_readonly("model", [](const StudyFile& s) { return std::string(model_name(s.model)); })
       .def_property_readonly("random_surface", [](const StudyFile& s) { return s.surface->random_surface(); },
                              "true when every realisation draws its own asperities")

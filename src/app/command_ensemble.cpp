@@ -18,10 +18,10 @@ namespace {
 
 std::string default_output(const StudyFile& study, const EnsembleCommandOptions& options) {
   if (options.shard)
-    return study.output_file + ".shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
-  if (!options.only) return study.output_file;
+    return study.output.file + ".shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
+  if (!options.only) return study.output.file;
   // --only writes one realisation: never over the full ensemble's result.
-  const std::filesystem::path out(study.output_file);
+  const std::filesystem::path out(study.output.file);
   return (out.parent_path() / (out.stem().string() + "_r" + std::to_string(*options.only) + ".h5")).string();
 }
 

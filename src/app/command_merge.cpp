@@ -36,7 +36,7 @@ void merge(const MergeOptions& options) {
                      " and the other shards ran: it, its surface file or the stengmc version changed since (the "
                      "shards record its identity); merge with the study and program they ran with" +
                      (options.study.empty() ? " (--study names the study file if it moved)" : ""));
-  const std::string out = options.out.empty() ? study.output_file : options.out;
+  const std::string out = options.out.empty() ? study.output.file : options.out;
   std::vector<NamedInput> inputs = study_inputs(study);
   for (const ShardFile& s : shards) inputs.push_back({s.path, "a shard file"});
   check_output_path(out, inputs, output_option(options.out, study));

@@ -31,7 +31,7 @@ struct RunOptions {
 
 void run_single(const RunOptions& options) {
   const StudyFile study = read_study_file(options.study_file, options.realisation);
-  const std::string out = options.out.empty() ? study.output_file : options.out;
+  const std::string out = options.out.empty() ? study.output.file : options.out;
   check_output_path(out, study_inputs(study), output_option(options.out, study));
   check_work(estimate_run(study), options.limits.limits(), study.file + ": the run");
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),

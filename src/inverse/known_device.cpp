@@ -84,7 +84,7 @@ std::string KnownDevice::describe() const {
   out.precision(17);
   const auto& e = asperity.element;
   out << "model = model2\n"
-      << "friction_form = " << FRICTION_FORM_NAMES.name(model.friction_form) << "\n"
+      << "friction_form = " << model.friction_law->name << "\n"
       << "static_friction = " << model.friction.static_coefficient << "\n"
       << "kinetic_friction = " << model.friction.kinetic_coefficient << "\n"
       << "belt_velocity_m_per_s = " << model.belt_velocity_m_per_s << "\n"

@@ -26,7 +26,7 @@ std::string prior_study_text(const KnownDevice& device, const InversePrior& prio
     << "damping_n_s_per_m = " << m.damping_n_s_per_m << "\n"
     << "stribeck_decay_s_per_m = " << m.stribeck_decay_s_per_m << "\n"
     << "atan_sharpness_s_per_m = " << m.atan_sharpness_s_per_m << "\n"
-    << "friction_form = \"" << FRICTION_FORM_NAMES.name(m.friction_form) << "\"\n"
+    << "friction_form = \"" << m.friction_law->name << "\"\n"
     << "relative_tolerance = " << m.relative_tolerance << "\n\n"
     << "[circuit]\n"
     << "load_resistance_ohm = " << device.circuit.load_resistance_ohm << "\n"

@@ -42,7 +42,7 @@ void write_model(Hdf5Writer& file, const Study& study) {
     file.attribute("/model", "damping_n_s_per_m", p.damping_n_s_per_m);
     file.attribute("/model", "stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
     file.attribute("/model", "atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
-    file.attribute("/model", "friction_form", FRICTION_FORM_NAMES.name(p.friction_form));
+    file.attribute("/model", "friction_form", p.friction_law->name);
     file.attribute("/model", "relative_tolerance", p.relative_tolerance);
     file.attribute("/model", "friction_convention", "F(v_r), the belt's friction force on the asperity, v_r = v_b - x' (MODEL.md 1)");
   }
@@ -131,7 +131,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);
 
-  const OutputTraces& traces = study.traces;
+  const OutputTraces& traces = study.output.traces;
   if (traces.x) file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }));
   if (traces.v) file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }));
   if (traces.friction)

@@ -100,7 +100,7 @@ struct Keep {
 Keep what_to_keep(const Study& study, const RunOptions& options) {
   // A netlist load is solved by ngspice after the tribology, from the motions themselves.
   if (!options.keep_traces) return {.motion = study.netlist != nullptr};
-  const OutputTraces& t = study.traces;
+  const OutputTraces& t = study.output.traces;
   const bool current_spectra = study.spectrum && study.spectrum->element_currents;
   return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
 }

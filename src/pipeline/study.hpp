@@ -16,6 +16,7 @@
 #include "core/toml_reader.hpp"
 #include "model/asperity.hpp"
 #include "pipeline/measurement_noise.hpp"
+#include "pipeline/output_settings.hpp"
 #include "surface/surface.hpp"
 #include "tribology/model1.hpp"
 #include "tribology/model2.hpp"
@@ -46,17 +47,6 @@ enum class CircuitInput {
 inline constexpr NameTable CIRCUIT_INPUT_NAMES{std::array{NamedValue<CircuitInput>{CircuitInput::actual, "actual"},
                                                           NamedValue<CircuitInput>{CircuitInput::imposed, "imposed"}}};
 
-//! Which n x M traces a run file holds (docs/output-files.md); all by default. The
-//! voltage, charge, time and per-asperity parameters are always written.
-struct OutputTraces {
-  bool x = true;         //!< /asperity/x
-  bool v = true;         //!< /asperity/v
-  bool friction = true;  //!< /asperity/friction
-  bool current = true;   //!< /asperity/current
-  bool charge = true;    //!< /asperity/charge
-  bool x0 = true;        //!< /asperity/x0 (Model 1)
-};
-
 //! A swept or drawn parameter's value (an ensemble's sweep or draws) set before reading.
 struct ParameterOverride {
   std::string parameter;  //!< dotted key; "surface.*" reaches into the surface file the study names
@@ -83,8 +73,7 @@ struct Study {
   std::shared_ptr<const NetlistLoad> netlist;  //!< [circuit] netlist: the load ngspice solves instead of R || C_L
   CircuitInput circuit_input = CircuitInput::actual;
   DomainPolicy domain_policy = DomainPolicy::error;
-  std::string output_file;    //!< where `run` writes, unless the command line says otherwise
-  OutputTraces traces;        //!< which traces it writes
+  OutputSettings output;      //!< [output]: what a run writes and where (no number depends on it)
   std::vector<ParameterOverride> overrides;  //!< values set by a sweep before reading (none otherwise)
   std::optional<SpectrumSettings> spectrum;  //!< spectral analysis, when the study has [spectrum]
   std::optional<NoiseSettings> noise;        //!< measurement noise on V before the spectra ([noise])

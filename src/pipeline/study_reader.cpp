@@ -71,7 +71,7 @@ void read_model(TomlTable& root, Study& study) {
       model->fail("atan_sharpness_s_per_m", "= " + format_number(p.atan_sharpness_s_per_m) + " must be <= " +
                                                 format_number(MAX_ATAN_SHARPNESS_S_PER_M) +
                                                 " (a friction transition narrower than 0.1 nm/s)");
-    p.friction_form = model->enumeration("friction_form", p.friction_form, FRICTION_FORM_NAMES);
+    p.friction_law = find_friction_law(model->choice("friction_form", p.friction_law->name, friction_law_names()));
     p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
     if (p.relative_tolerance >= 1e-2 || p.relative_tolerance < 1e-14)
       model->fail("relative_tolerance", "= " + format_number(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
@@ -123,9 +123,6 @@ void read_circuit(TomlTable& root, Study& study) {
     circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");
 }
 
-std::string default_output_file(const std::string& study_file) {
-  return (std::filesystem::path("results") / std::filesystem::path(study_file).stem()).string() + ".h5";
-}
 
 }  // namespace
 
@@ -167,15 +164,9 @@ Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> 
   if (root.has("inverse")) document.defer_table("inverse");
   if (upper_tables) upper_tables(root);
   else if (root.has("ensemble")) document.defer_table("ensemble");
-  study.output_file = default_output_file(study.file);
-  if (auto output = root.table("output")) {
-    study.output_file = output->string("file", study.output_file);
-    if (study.output_file.empty()) output->fail("file", "is empty: give the path of the HDF5 file to write, or leave the key out");
-    if (output->has("traces")) {
-      const auto names = output->string_list("traces", {"x", "v", "friction", "current", "charge", "x0"});
-      auto wanted = [&](std::string_view name) { return std::find(names.begin(), names.end(), name) != names.end(); };
-      study.traces = {wanted("x"), wanted("v"), wanted("friction"), wanted("current"), wanted("charge"), wanted("x0")};
-    }
+  {
+    auto output = root.table("output");
+    study.output = read_output_settings(output ? &*output : nullptr, study.file);
   }
   document.reject_unknown_keys();
 

@@ -31,7 +31,7 @@ double fastest_natural_frequency_hz(const Study& study, bool asperities_known) {
 }
 
 double traces_written(const Study& study) {
-  const OutputTraces& t = study.traces;
+  const OutputTraces& t = study.output.traces;
   return (t.x ? 1 : 0) + (t.v ? 1 : 0) + (t.friction ? 1 : 0) + (t.current ? 1 : 0) + (t.charge ? 1 : 0) +
          (t.x0 && study.model == ModelKind::model1 ? 1 : 0);
 }

@@ -1,21 +1,12 @@
 #pragma once
 //! Model 2: mass on a moving belt with Stribeck friction (MODEL.md §1; paper Eq. 2).
-#include "core/name_table.hpp"
 #include "model/asperity.hpp"
 #include "tribology/friction.hpp"
+#include "tribology/friction_law.hpp"
 #include "tribology/time_grid.hpp"
 #include "tribology/trajectory.hpp"
 
 namespace stengmc {
-
-//! Which friction law F(v_r) of MODEL.md §1.
-enum class FrictionForm {
-  consistent,  //!< N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|)] (2/pi) atan(s v_r)   (default)
-  literal,     //!< N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]   (paper Eq. 2 as printed)
-};
-//! `friction_form` in study and run files.
-inline constexpr NameTable FRICTION_FORM_NAMES{std::array{NamedValue<FrictionForm>{FrictionForm::consistent, "consistent"},
-                                                          NamedValue<FrictionForm>{FrictionForm::literal, "literal"}}};
 
 //! Parameters of Model 2 shared by all asperities.
 struct Model2Params {
@@ -24,7 +15,8 @@ struct Model2Params {
   double damping_n_s_per_m = 1e-7;           //!< c, viscous damping [N s/m]
   double stribeck_decay_s_per_m = 1e-7;      //!< c_s, Stribeck decay constant [s/m]
   double atan_sharpness_s_per_m = 1e3;       //!< s, sharpness of the atan regularisation [s/m]
-  FrictionForm friction_form = FrictionForm::consistent;
+  //! F(v_r), by `friction_form` (friction_law.hpp; consistent unless the study says otherwise).
+  const FrictionLaw* friction_law = &default_friction_law();
   //! Local error tolerance of the integrator (RODAS4 steps and sliding-propagator steps,
   //! model2_integrator.hpp), relative and (in units of the length scale
   //! max(mu N / k, |x0|, |x0'| / w0, v_b / w0)) absolute [-].

@@ -12,72 +12,28 @@
 
 namespace stengmc {
 
-//! The friction law F(v_r) of Model 2 with its slope, for one normal load.
+//! Model 2's friction law (params.friction_law) at one normal load.
 class StribeckFriction {
  public:
-  //! Law of `params.friction_form` for normal load `normal_load_n` [N].
+  //! The law of `params.friction_law` for normal load `normal_load_n` [N].
   StribeckFriction(const Model2Params& params, double normal_load_n)
-      : load_n_(normal_load_n),
-        mu_k_(params.friction.kinetic_coefficient),
-        mu_delta_(params.friction.static_coefficient - params.friction.kinetic_coefficient),
-        decay_s_per_m_(params.stribeck_decay_s_per_m),
-        sharpness_s_per_m_(params.atan_sharpness_s_per_m),
-        literal_(params.friction_form == FrictionForm::literal) {}
+      : parameters_{normal_load_n, params.friction.kinetic_coefficient, params.friction.static_coefficient,
+                    params.stribeck_decay_s_per_m, params.atan_sharpness_s_per_m},
+        law_(params.friction_law) {}
 
   //! F(v_r) [N] for relative velocity v_r [m/s].
-  [[nodiscard]] double force(double v_r) const {
-    const double stribeck = mu_delta_ * decay(decay_s_per_m_ * std::abs(v_r));
-    const double regularised_sign = TWO_OVER_PI * arctan(sharpness_s_per_m_ * v_r);
-    return literal_ ? load_n_ * (mu_k_ + stribeck * regularised_sign)
-                    : load_n_ * (mu_k_ + stribeck) * regularised_sign;
-  }
+  [[nodiscard]] double force(double v_r) const { return law_->force(parameters_, v_r); }
 
   //! F(v_r) [N] and dF/dv_r [N s/m] together (they share the transcendental calls).
   void force_and_slope(double v_r, double& force_n, double& slope_n_s_per_m) const {
-    const double stribeck = mu_delta_ * decay(decay_s_per_m_ * std::abs(v_r));
-    const double sv = sharpness_s_per_m_ * v_r;
-    const double regularised_sign = TWO_OVER_PI * arctan(sv);
-    const double sign_slope = TWO_OVER_PI * sharpness_s_per_m_ / (1.0 + sv * sv);
-    // d/dv exp(-c_s|v|) = -c_s sign(v) exp(-c_s|v|); sign(v) * atan(s v) = |atan(s v)|, so
-    // F stays C^1 at v_r = 0 and the Jacobian below is exact on both sides.
-    const double stribeck_slope_times_sign = -decay_s_per_m_ * stribeck * std::abs(regularised_sign);
-    if (literal_) {
-      force_n = load_n_ * (mu_k_ + stribeck * regularised_sign);
-      slope_n_s_per_m = load_n_ * (stribeck * sign_slope + stribeck_slope_times_sign);
-    } else {
-      force_n = load_n_ * (mu_k_ + stribeck) * regularised_sign;
-      slope_n_s_per_m = load_n_ * ((mu_k_ + stribeck) * sign_slope + stribeck_slope_times_sign);
-    }
+    const ForceAndSlope f = law_->force_and_slope(parameters_, v_r);
+    force_n = f.force_n;
+    slope_n_s_per_m = f.slope_n_s_per_m;
   }
 
  private:
-  // exp(-z) for z >= 0. With Table-2 c_s = 1e-7 s/m, z = c_s |v_r| stays below 1e-5, where
-  // the degree-5 Taylor polynomial is exact to rounding (remainder z^6/720 < 1.4e-21 for
-  // z < 1e-3) and ~3x cheaper than std::exp, which was a quarter of the solver's time.
-  static double decay(double z) {
-    if (z < 1e-3) return 1.0 - z * (1.0 - z * (0.5 - z * (1.0 / 6.0 - z * (1.0 / 24.0 - z * (1.0 / 120.0)))));
-    return std::exp(-z);
-  }
-  // atan(z). Sliding keeps |s v_r| in the hundreds to thousands, where
-  // atan(z) = pi/2 - atan(1/z) and atan(1/z) is its odd Taylor series to y^9 (remainder
-  // y^11 / 11 < 1.3e-21 for |1/z| <= 1/64, below rounding): one division and five
-  // multiply-adds where std::atan was a fifth of the solver's time.
-  static double arctan(double z) {
-    const double a = std::abs(z);
-    if (!(a >= 64.0)) return std::atan(z);  // also NaN
-    const double y = 1.0 / a;
-    const double y2 = y * y;
-    const double r = HALF_PI - y * (1.0 - y2 * (1.0 / 3.0 - y2 * (1.0 / 5.0 - y2 * (1.0 / 7.0 - y2 * (1.0 / 9.0)))));
-    return z < 0.0 ? -r : r;
-  }
-  static constexpr double TWO_OVER_PI = 0.63661977236758134308;
-  static constexpr double HALF_PI = 1.57079632679489661923;
-  double load_n_;
-  double mu_k_;
-  double mu_delta_;
-  double decay_s_per_m_;
-  double sharpness_s_per_m_;
-  bool literal_;
+  FrictionParameters parameters_;
+  const FrictionLaw* law_;
 };
 
 //! Terms of a sliding-propagator piece's polynomial (sliding_propagator.hpp).

@@ -44,7 +44,7 @@ TEST(Study, DefaultsAreThePapersValues) {
   EXPECT_EQ(s.model2.atan_sharpness_s_per_m, 1e3);
   EXPECT_EQ(s.circuit.load_resistance_ohm, 1e6);
   EXPECT_EQ(s.domain_policy, DomainPolicy::error);
-  EXPECT_EQ(s.output_file, "results/x.h5");
+  EXPECT_EQ(s.output.file, "results/x.h5");
   EXPECT_EQ(s.grid().count, 101u);
   EXPECT_EQ(s.text, MINIMAL);
 }
@@ -151,6 +151,22 @@ TEST(Study, RejectsDurationThatIsNotAWholeNumberOfSamples) {
 TEST(Study, RejectsUnknownOutputTrace) {
   const std::string text = MINIMAL + "[output]\ntraces = [\"x\", \"velocity\"]\n";
   EXPECT_NE(error_of(text).find("[output] traces [1] = \"velocity\" is not one of"), std::string::npos) << error_of(text);
+}
+
+// The friction laws are a registry (tribology/friction_law.hpp): the reader takes a law by
+// its registered name and lists every registered name when the study gives another.
+TEST(Study, FrictionFormNamesARegisteredLaw) {
+  EXPECT_EQ(parse_study(MINIMAL, "s.toml").model2.friction_law->name, "consistent");
+  std::string literal = MINIMAL;
+  literal.replace(literal.find("kind = \"model2\""), 15, "kind = \"model2\"\nfriction_form = \"literal\"");
+  EXPECT_EQ(parse_study(literal, "s.toml").model2.friction_law->name, "literal");
+  std::string unknown = MINIMAL;
+  unknown.replace(unknown.find("kind = \"model2\""), 15, "kind = \"model2\"\nfriction_form = \"coulomb\"");
+  const std::string error = error_of(unknown);
+  EXPECT_NE(error.find("[model] friction_form"), std::string::npos) << error;
+  EXPECT_NE(error.find("\"coulomb\""), std::string::npos) << error;
+  EXPECT_NE(error.find("consistent"), std::string::npos) << error;
+  EXPECT_NE(error.find("literal"), std::string::npos) << error;
 }
 
 TEST(Study, RejectsMissingModelKind) {
