@@ -6,7 +6,8 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
+#include <type_traits>
+#include <variant>
 
 #include "bindings.hpp"
 #include "ensemble/ensemble_runner.hpp"
@@ -84,56 +85,22 @@ void add_traces(py::dict& out, const std::vector<GridPoint>& grid) {
   out["traces"] = traces;
 }
 
-//! One interval per grid point as <name>, <name>_low, <name>_high, <name>_known, <name>_method.
-void add_intervals(py::dict& group, const std::string& name, const std::vector<GridPoint>& grid,
-                   const std::function<const Interval&(const GridPoint&)>& pick) {
-  IntervalColumns c = tabulate_intervals(grid, pick);
-  group[py::str(name)] = to_numpy(std::move(c.estimate));
-  group[py::str(name + "_low")] = to_numpy(std::move(c.low));
-  group[py::str(name + "_high")] = to_numpy(std::move(c.high));
-  group[py::str(name + "_known")] = to_numpy(std::move(c.known));
-  group[py::str(name + "_method")] = c.method;
-}
-
 //! /summary/: every scalar's statistics, the pooled ratios and the target, per grid point.
 void add_summary(py::dict& out, const std::vector<GridPoint>& grid) {
   py::dict summary;
-  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
-    py::dict s;
-    std::vector<std::int64_t> count;
-    std::vector<double> min, max;
-    for (const GridPoint& point : grid) {
-      const ScalarSummary& v = point.summary.scalars[k];
-      count.push_back(static_cast<std::int64_t>(v.count));
-      min.push_back(v.min);
-      max.push_back(v.max);
-    }
-    s["count"] = to_numpy(std::move(count));
-    s["min"] = to_numpy(std::move(min));
-    s["max"] = to_numpy(std::move(max));
-    add_intervals(s, "mean", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
-    add_intervals(s, "std", grid,
-                  [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].standard_deviation; });
-    add_intervals(s, "median", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
-    add_intervals(s, "p05", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
-    add_intervals(s, "p95", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
-    summary[py::str(std::string(scalar_info(static_cast<Scalar>(k)).name))] = s;
+  for (SummaryColumn& c : tabulate_summary(grid)) {
+    const py::str group(c.group);
+    if (!summary.contains(group)) summary[group] = py::dict();
+    py::dict columns = summary[group];
+    std::visit(
+        [&](auto& values) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<std::string>>)
+            columns[py::str(c.name)] = values;
+          else
+            columns[py::str(c.name)] = to_numpy(std::move(values));
+        },
+        c.values);
   }
-  py::dict pooled;
-  add_intervals(pooled, "fft_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
-  add_intervals(pooled, "hr_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
-  add_intervals(pooled, "valid_fraction", grid, [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
-  summary["pooled"] = pooled;
-  std::vector<double> width;
-  std::vector<std::int64_t> met;
-  for (const GridPoint& point : grid) {
-    width.push_back(point.run.target_half_width_reached);
-    met.push_back(point.run.target_met ? 1 : 0);
-  }
-  py::dict target;
-  target["half_width"] = to_numpy(std::move(width));
-  target["met"] = to_numpy(std::move(met));
-  summary["target"] = target;
   out["summary"] = summary;
 }
 
@@ -152,32 +119,18 @@ void add_grid(py::dict& out, const StudyFile& base, const std::vector<GridPoint>
   if (!base.ensemble->sweep.empty()) {
     py::list names;
     for (const SweepAxis& axis : base.ensemble->sweep) names.append(axis.parameter);
-    std::vector<std::vector<double>> values;
-    for (const GridPoint& point : grid) {
-      values.emplace_back();
-      for (const ParameterOverride& o : point.overrides) values.back().push_back(o.value);
-    }
     py::dict g;
     g["parameter"] = names;
-    g["values"] = rows_to_numpy(values);
+    g["values"] = rows_to_numpy(tabulate_grid(grid));
     out["grid"] = g;
   }
   if (!base.ensemble->draws.empty()) {
     // /draws/: each [[ensemble.draw]]'s value per realisation, in the order of "realisations".
     py::list names;
     for (const DrawAxis& d : base.ensemble->draws) names.append(d.parameter);
-    std::vector<std::vector<double>> rows;
-    for (const GridPoint& point : grid)
-      for (const RealisationRecord& r : point.run.records) {
-        rows.emplace_back();
-        for (const DrawAxis& d : base.ensemble->draws) {
-          const RecordExtra* e = r.extra("draw:" + d.parameter);
-          rows.back().push_back(e && !e->values.empty() ? e->values.front() : 0.0);
-        }
-      }
     py::dict d;
     d["parameter"] = names;
-    d["values"] = rows_to_numpy(rows);
+    d["values"] = rows_to_numpy(tabulate_draws(base.ensemble->draws, grid));
     out["draws"] = d;
   }
   out["realisations_requested"] = base.ensemble->realisations;

@@ -1,7 +1,7 @@
 #include "io/ensemble_file.hpp"
 
 #include <cstdint>
-#include <functional>
+#include <variant>
 
 #include "core/hdf5_file.hpp"
 #include "ensemble/record_table.hpp"
@@ -18,12 +18,7 @@ void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoin
   std::vector<std::string> names;
   for (const SweepAxis& axis : e.sweep) names.push_back(axis.parameter);
   f.write("/grid/parameter", names);
-  std::vector<std::vector<double>> values;
-  for (const GridPoint& point : grid) {
-    values.emplace_back();
-    for (const ParameterOverride& o : point.overrides) values.back().push_back(o.value);
-  }
-  f.write("/grid/values", values);
+  f.write("/grid/values", tabulate_grid(grid));
 }
 
 void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
@@ -45,18 +40,8 @@ void write_draws(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoi
   if (draws.empty()) return;
   std::vector<std::string> names;
   for (const DrawAxis& d : draws) names.push_back(d.parameter);
-  std::vector<std::vector<double>> rows;
-  for (const GridPoint& point : grid)
-    for (const RealisationRecord& r : point.run.records) {
-      std::vector<double> row;
-      for (const DrawAxis& d : draws) {
-        const RecordExtra* e = r.extra("draw:" + d.parameter);
-        row.push_back(e && !e->values.empty() ? e->values.front() : 0.0);
-      }
-      rows.push_back(std::move(row));
-    }
   f.write("/draws/parameter", names);
-  f.write("/draws/values", rows);
+  f.write("/draws/values", tabulate_draws(draws, grid));
 }
 
 void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
@@ -72,51 +57,9 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
     }
 }
 
-//! One interval per grid point, as datasets <name>, <name>_low, <name>_high.
-void write_intervals(Hdf5Writer& f, const std::string& group, const std::string& name, const std::vector<GridPoint>& grid,
-                     const std::function<const Interval&(const GridPoint&)>& pick) {
-  const IntervalColumns c = tabulate_intervals(grid, pick);
-  f.write(group + "/" + name, c.estimate);
-  f.write(group + "/" + name + "_low", c.low);
-  f.write(group + "/" + name + "_high", c.high);
-  f.write(group + "/" + name + "_known", c.known);
-  f.write(group + "/" + name + "_method", c.method);
-}
-
 void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
-  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
-    const ScalarInfo& info = scalar_info(static_cast<Scalar>(k));
-    const std::string g = "/summary/" + std::string(info.name);
-    std::vector<std::int64_t> count;
-    std::vector<double> min, max;
-    for (const GridPoint& point : grid) {
-      const ScalarSummary& v = point.summary.scalars[k];
-      count.push_back(static_cast<std::int64_t>(v.count));
-      min.push_back(v.min);
-      max.push_back(v.max);
-    }
-    f.write(g + "/count", count);
-    f.write(g + "/min", min);
-    f.write(g + "/max", max);
-    write_intervals(f, g, "mean", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].mean; });
-    write_intervals(f, g, "std", grid,
-                    [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].standard_deviation; });
-    write_intervals(f, g, "median", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].median; });
-    write_intervals(f, g, "p05", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p05; });
-    write_intervals(f, g, "p95", grid, [k](const GridPoint& p) -> const Interval& { return p.summary.scalars[k].p95; });
-  }
-  write_intervals(f, "/summary/pooled", "fft_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.fft_pooled_ratio; });
-  write_intervals(f, "/summary/pooled", "hr_ratio", grid, [](const GridPoint& p) -> const Interval& { return p.summary.hr_pooled_ratio; });
-  write_intervals(f, "/summary/pooled", "valid_fraction", grid,
-                  [](const GridPoint& p) -> const Interval& { return p.summary.valid_fraction; });
-  std::vector<double> width;
-  std::vector<std::int64_t> met;
-  for (const GridPoint& point : grid) {
-    width.push_back(point.run.target_half_width_reached);
-    met.push_back(point.run.target_met ? 1 : 0);
-  }
-  f.write("/summary/target/half_width", width);
-  f.write("/summary/target/met", met);
+  for (const SummaryColumn& c : tabulate_summary(grid))
+    std::visit([&](const auto& values) { f.write("/summary/" + c.group + "/" + c.name, values); }, c.values);
 }
 
 }  // namespace

@@ -24,16 +24,10 @@ namespace {
 using testing::run_cli;
 using testing::ScratchDir;
 
-// A small known device: 20 us records at 100 MHz, a prior of 1-3 asperities with
-// stiffnesses around 60-90 N/m, so a bank of 50 records takes seconds.
+// The known device (tests/support/known_device.toml) with 20 us records and the quick prior
+// (known_device_quick_prior.toml: 1-3 asperities, 50 records, a bank in seconds).
 std::string device_study(const std::string& replace_from = "", const std::string& replace_to = "") {
-  std::string text = testing::known_device_study("20e-6", R"(count = [1, 3]
-median_n_per_m = [60, 90]
-sigma_log = [0.1, 0.2]
-snr_db = [25, 35]
-calibration_records = 50
-seed = 5
-)");
+  std::string text = testing::known_device_study("20e-6", testing::quick_prior());
   if (!replace_from.empty()) {
     const auto at = text.find(replace_from);
     EXPECT_NE(at, std::string::npos) << replace_from;

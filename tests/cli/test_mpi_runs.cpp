@@ -185,13 +185,7 @@ TEST(Mpi, ACalibrationBankIsTheOneProcessBankOnTwoAndThreeRanks) {
   // The small known device of test_invert_command (50 records of 20 us, 1-3 asperities):
   // every dataset and attribute of the bank but the wall and CPU times it records.
   ScratchDir scratch("mpi-calibrate");
-  const std::string device = scratch.write("device.toml", testing::known_device_study("20e-6", R"(count = [1, 3]
-median_n_per_m = [60, 90]
-sigma_log = [0.1, 0.2]
-snr_db = [25, 35]
-calibration_records = 50
-seed = 5
-)"));
+  const std::string device = scratch.write("device.toml", testing::known_device_study("20e-6", testing::quick_prior()));
   const std::string reference = scratch.file("one_process.h5");
   const auto single = run_cli("calibrate " + device + " -j 1 -o " + reference, scratch);
   ASSERT_EQ(single.exit_code, 0) << single.output;

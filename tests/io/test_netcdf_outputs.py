@@ -156,39 +156,15 @@ min = 0.1
 max = 0.3
 """
 
-DEVICE = """duration_s = 20e-6
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = 75
-[[surface.asperity]]
-stiffness_n_per_m = 62
-[inverse]
-count = [1, 3]
-median_n_per_m = [60, 90]
-sigma_log = [0.1, 0.2]
-snr_db = [25, 35]
-calibration_records = 50
-seed = 5
-"""
+
+def device_study():
+    """The known device of the inverse tests (tests/support/known_device.toml, shared with
+    tests/support/inverse_device.hpp) with two asperities and the quick prior's bank."""
+    support = os.path.join(SOURCE_DIR, "tests", "support")
+    with open(os.path.join(support, "known_device.toml")) as device, \
+            open(os.path.join(support, "known_device_quick_prior.toml")) as prior:
+        return ("duration_s = 20e-6\n" + device.read() + "[[surface.asperity]]\nstiffness_n_per_m = 62\n[inverse]\n"
+                + prior.read())
 
 
 def main():
@@ -222,7 +198,7 @@ def main():
         run(binary, "run", out("single.toml"), "-j", "2", "-o", out("single.h5"), cwd=work)
         run(binary, "run", out("sweep.toml"), "-j", "2", "-o", out("sweep.h5"), cwd=work)
         with open(out("device.toml"), "w") as f:
-            f.write(DEVICE)
+            f.write(device_study())
         run(binary, "calibrate", out("device.toml"), "-j", "2", "-o", out("bank.h5"), cwd=work)
         # A record of the device (its two asperities) as the CSV `t,V` invert reads.
         run(binary, "run", out("device.toml"), "-o", out("record.h5"), cwd=work)

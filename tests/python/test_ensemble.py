@@ -1,7 +1,7 @@
 """The module's ensemble is the command line's ensemble file, bitwise: every record
 (/realisations, /asperities), kept trace and statistic (/summary), on 1 and 2 threads
 (the records depend on the study and the realisation id alone, README: ensembles), from
-the study's file and from its text."""
+the study's file and from its text; and the [[ensemble.draw]] values (/draws)."""
 import tomllib
 
 import numpy as np
@@ -9,18 +9,23 @@ import numpy as np
 from conftest import assert_bitwise, read_datasets, run_cli, source
 
 
-def small_ensemble_text(realisations=4):
-    """studies/ensembles/identifiability_quick.toml shrunk: 20 us records, a two-point sweep
-    of the count, four realisations each, [noise] and [spectrum] as shipped, one kept
-    trace: a second or two."""
+def quick_study_with(ensemble):
+    """studies/ensembles/identifiability_quick.toml shrunk to 20 us records, [noise] and
+    [spectrum] as shipped, with the given [ensemble] table, as TOML text."""
     import stengmc
     with open(source("studies", "ensembles", "identifiability_quick.toml"), "rb") as f:
         study = tomllib.load(f)
     study["duration_s"] = 20e-6
     study["surface"]["file"] = source("surfaces", "lognormal_count.toml")
-    study["ensemble"] = {"realisations": realisations, "trace_realisations": [1],
-                         "sweep": [{"parameter": "surface.summits.count", "values": [2, 3]}]}
+    study["ensemble"] = ensemble
     return stengmc.toml_text(study)
+
+
+def small_ensemble_text(realisations=4):
+    """The quick study with a two-point sweep of the count, four realisations each, one kept
+    trace: a second or two."""
+    return quick_study_with({"realisations": realisations, "trace_realisations": [1],
+                             "sweep": [{"parameter": "surface.summits.count", "values": [2, 3]}]})
 
 
 # The module's names for the trace datasets (the file's /traces/<point>/realisation_<r>/<name>).
@@ -71,6 +76,26 @@ def test_summary_counts_match_the_records(stengmc, tmp_path):
     for point in (0, 1):
         valid = np.sum(r["valid"][r["grid_point"] == point])
         assert ensemble.summary["voltage_rms_v"]["count"][point] == valid
+
+
+def test_drawn_parameters_equal_the_command_line_file_and_the_records(stengmc, tmp_path):
+    # [[ensemble.draw]] instead of a sweep: the module's draws, records and statistics are
+    # the file's bitwise, and each row of the drawn count is the number of asperities its
+    # realisation simulated (the /asperities rows between its offsets), an independent fact.
+    study_path = tmp_path / "drawn.toml"
+    study_path.write_text(quick_study_with({"realisations": 6, "draw": [
+        {"parameter": "surface.summits.count", "kind": "integer", "min": 1, "max": 4},
+        {"parameter": "surface.stiffness.sigma_log", "kind": "uniform", "min": 0.1, "max": 0.3}]}))
+    out = tmp_path / "drawn.h5"
+    run_cli("run", study_path, "--out", out)
+    ensemble = stengmc.load_study(study_path).run_ensemble(threads=2)
+    for group in ("realisations", "summary", "draws"):
+        for name, data in read_datasets(out, group).items():
+            assert_bitwise(lookup(ensemble, f"{group}/{name}"), data, f"{group}/{name}")
+    assert ensemble.draws["parameter"] == ["surface.summits.count", "surface.stiffness.sigma_log"]
+    counts = ensemble.draws["values"][:, 0]
+    assert np.array_equal(counts, np.diff(ensemble.realisations["asperity_offset"]))
+    assert len(set(counts)) > 1, "six realisations all drew the same count"
 
 
 def test_python_threads_run_while_the_ensemble_computes(stengmc, tmp_path):
