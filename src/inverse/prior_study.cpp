@@ -2,6 +2,9 @@
 
 #include <sstream>
 
+#include "circuit/circuit_settings.hpp"
+#include "tribology/model2_settings.hpp"
+
 namespace stengmc {
 
 std::string prior_study_text(const KnownDevice& device, const InversePrior& prior, std::size_t realisations,
@@ -20,18 +23,9 @@ std::string prior_study_text(const KnownDevice& device, const InversePrior& prio
     << "duration_s = " << device.duration_s << "\n"
     << "sample_rate_hz = " << device.sample_rate_hz << "\n\n"
     << "[model]\nkind = \"model2\"\n"
-    << "static_friction = " << m.friction.static_coefficient << "\n"
-    << "kinetic_friction = " << m.friction.kinetic_coefficient << "\n"
-    << "belt_velocity_m_per_s = " << m.belt_velocity_m_per_s << "\n"
-    << "damping_n_s_per_m = " << m.damping_n_s_per_m << "\n"
-    << "stribeck_decay_s_per_m = " << m.stribeck_decay_s_per_m << "\n"
-    << "atan_sharpness_s_per_m = " << m.atan_sharpness_s_per_m << "\n"
-    << "friction_form = \"" << m.friction_law->name << "\"\n"
-    << "relative_tolerance = " << m.relative_tolerance << "\n\n"
+    << toml_lines(model2_settings(m)) << "\n"
     << "[circuit]\n"
-    << "load_resistance_ohm = " << device.circuit.load_resistance_ohm << "\n"
-    << "load_capacitance_f = " << device.circuit.load_capacitance_f << "\n"
-    << "substeps = " << device.circuit.substeps << "\n\n"
+    << toml_lines(circuit_settings(device.circuit)) << "\n"
     << "[domain]\npolicy = \"flag\"   # an asperity reaching l makes its record invalid, not the run\n\n"
     << "[surface]\nkind = \"random\"\nnominal_area_m2 = 1e-6   # positions play no part under a fixed load\n"
     << "[surface.summits]\ncount_rule = \"fixed\"\ncount = " << prior.count_min << "   # drawn per record\n"

@@ -5,6 +5,10 @@
 
 #include "core/build_info.hpp"
 #include "core/column.hpp"
+#include "core/setting.hpp"
+#include "circuit/circuit_settings.hpp"
+#include "tribology/model1_settings.hpp"
+#include "tribology/model2_settings.hpp"
 #include "io/population_file.hpp"
 #include "io/spectrum_file.hpp"
 #include "io/output_vocabulary.hpp"
@@ -25,25 +29,11 @@ void write_model(Hdf5Writer& file, const Study& study) {
   file.group("/model");
   file.attribute("/model", "kind", model_name(study.model));
   if (study.model == ModelKind::model1) {
-    const Model1Params& p = study.model1;
-    file.attribute("/model", "static_friction", p.friction.static_coefficient);
-    file.attribute("/model", "kinetic_friction", p.friction.kinetic_coefficient);
-    file.attribute("/model", "drive_amplitude_m", p.drive_amplitude_m);
-    file.attribute("/model", "drive_angular_frequency_rad_per_s", p.drive_angular_frequency_rad_per_s);
-    file.attribute("/model", "solver", MODEL1_SOLVER_NAMES.name(p.solver));
-    file.attribute("/model", "euler_cromer_substeps", static_cast<std::int64_t>(p.euler_cromer_substeps));
+    write_settings(file, "/model", model1_settings(study.model1));
     file.attribute("/model", "friction_convention",
                    "tangential force the asperity transmits: mu_k N sign(x') sliding, k (x0 - x) stuck (MODEL.md 1)");
   } else {
-    const Model2Params& p = study.model2;
-    file.attribute("/model", "static_friction", p.friction.static_coefficient);
-    file.attribute("/model", "kinetic_friction", p.friction.kinetic_coefficient);
-    file.attribute("/model", "belt_velocity_m_per_s", p.belt_velocity_m_per_s);
-    file.attribute("/model", "damping_n_s_per_m", p.damping_n_s_per_m);
-    file.attribute("/model", "stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
-    file.attribute("/model", "atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
-    file.attribute("/model", "friction_form", p.friction_law->name);
-    file.attribute("/model", "relative_tolerance", p.relative_tolerance);
+    write_settings(file, "/model", model2_settings(study.model2));
     file.attribute("/model", "friction_convention", "F(v_r), the belt's friction force on the asperity, v_r = v_b - x' (MODEL.md 1)");
   }
 }
@@ -96,9 +86,7 @@ void write_circuit(Hdf5Writer& file, const CircuitResult& circuit, const Circuit
   file.write("/circuit/charge", circuit.charge_c);
   if (traces.current) file.write("/asperity/current", circuit.current_a);
   if (traces.charge) file.write("/asperity/charge", circuit.element_charge_c);
-  file.attribute("/circuit", "load_resistance_ohm", params.load_resistance_ohm);
-  file.attribute("/circuit", "load_capacitance_f", params.load_capacitance_f);
-  file.attribute("/circuit", "substeps", static_cast<std::int64_t>(params.substeps));
+  write_settings(file, "/circuit", circuit_settings(params));
   file.attribute("/circuit", "samples", static_cast<std::int64_t>(circuit.voltage_v.size()));
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "circuit/circuit_settings.hpp"
 #include "circuit/netlist_key.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
@@ -12,70 +13,23 @@
 #include "core/toml_reader.hpp"
 #include "pipeline/study_realisation.hpp"
 #include "surface/surface.hpp"
+#include "tribology/model1_settings.hpp"
+#include "tribology/model2_settings.hpp"
 
 namespace stengmc {
 
 namespace {
 
-// Friction coefficients at most (read_friction says why).
-constexpr double MAX_FRICTION_COEFFICIENT = 1e3;
-
-// Model 2's atan sharpness s at most [s/m] (read_model says why).
-constexpr double MAX_ATAN_SHARPNESS_S_PER_M = 1e10;
-
 // Drive periods a Model 1 run may span: omega t then still has ~1e-3 rad of precision.
 constexpr double MAX_DRIVE_PERIODS = 1e12;
-
-FrictionCoefficients read_friction(TomlTable& model) {
-  FrictionCoefficients f;
-  f.static_coefficient = model.positive("static_friction", f.static_coefficient);
-  f.kinetic_coefficient = model.non_negative("kinetic_friction", f.kinetic_coefficient);
-  // No known pair of materials comes near 1e3 (clean metals in vacuum reach ~10); beyond
-  // it the forces only drive the integrators into their step budgets (found by the fuzz
-  // tests: mu_s = 2e9 ran Model 2 for a minute).
-  if (f.static_coefficient > MAX_FRICTION_COEFFICIENT)
-    model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be <= " +
-                                      format_number(MAX_FRICTION_COEFFICIENT));
-  if (f.static_coefficient < f.kinetic_coefficient)
-    model.fail("static_friction", "= " + format_number(f.static_coefficient) + " must be >= kinetic_friction = " +
-                                      format_number(f.kinetic_coefficient));
-  return f;
-}
 
 void read_model(TomlTable& root, Study& study) {
   auto model = root.table("model");
   if (!model) root.fail("model", "is missing: a [model] table with kind = \"model1\" or \"model2\" is required");
   if (!model->has("kind")) model->fail("kind", "is missing: \"model1\" (imposed sinusoid) or \"model2\" (moving belt)");
   study.model = MODEL_KIND_NAMES.value(model->choice("kind", "", MODEL_KIND_NAMES.names()));
-  if (study.model == ModelKind::model1) {
-    Model1Params& p = study.model1;
-    p.friction = read_friction(*model);
-    p.drive_amplitude_m = model->non_negative("drive_amplitude_m", p.drive_amplitude_m);
-    p.drive_angular_frequency_rad_per_s =
-        2.0 * PI * model->positive("drive_frequency_hz", p.drive_angular_frequency_rad_per_s / (2.0 * PI));
-    p.solver = model->enumeration("solver", p.solver, MODEL1_SOLVER_NAMES);
-    // Read whatever the solver, so switching `solver` back and forth never makes it "unknown".
-    p.euler_cromer_substeps = static_cast<std::size_t>(model->integer("euler_cromer_substeps", 1, 1));
-    if (p.euler_cromer_substeps > 1'000'000) model->fail("euler_cromer_substeps", "must be <= 1000000");
-  } else {
-    Model2Params& p = study.model2;
-    p.friction = read_friction(*model);
-    p.belt_velocity_m_per_s = model->number("belt_velocity_m_per_s", p.belt_velocity_m_per_s);
-    p.damping_n_s_per_m = model->non_negative("damping_n_s_per_m", p.damping_n_s_per_m);
-    p.stribeck_decay_s_per_m = model->non_negative("stribeck_decay_s_per_m", p.stribeck_decay_s_per_m);
-    p.atan_sharpness_s_per_m = model->positive("atan_sharpness_s_per_m", p.atan_sharpness_s_per_m);
-    // Sharper than a 0.1 nm/s transition is the sign function itself at double precision,
-    // and the stiff friction makes RODAS4 run into its step budget (1e11 took ~5x the
-    // steps of 1e3, 1e15 exhausted 5e7 steps: found by the fuzz tests).
-    if (p.atan_sharpness_s_per_m > MAX_ATAN_SHARPNESS_S_PER_M)
-      model->fail("atan_sharpness_s_per_m", "= " + format_number(p.atan_sharpness_s_per_m) + " must be <= " +
-                                                format_number(MAX_ATAN_SHARPNESS_S_PER_M) +
-                                                " (a friction transition narrower than 0.1 nm/s)");
-    p.friction_law = find_friction_law(model->choice("friction_form", p.friction_law->name, friction_law_names()));
-    p.relative_tolerance = model->positive("relative_tolerance", p.relative_tolerance);
-    if (p.relative_tolerance >= 1e-2 || p.relative_tolerance < 1e-14)
-      model->fail("relative_tolerance", "= " + format_number(p.relative_tolerance) + " must lie in [1e-14, 1e-2)");
-  }
+  if (study.model == ModelKind::model1) study.model1 = read_model1_params(*model);
+  else study.model2 = read_model2_params(*model);
 }
 
 void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOverride>& surface_overrides) {
@@ -112,11 +66,7 @@ void read_surface(TomlTable& root, Study& study, const std::vector<ParameterOver
 void read_circuit(TomlTable& root, Study& study) {
   auto circuit = root.table("circuit");
   if (!circuit) return;
-  CircuitParams& c = study.circuit;
-  c.load_resistance_ohm = circuit->positive("load_resistance_ohm", c.load_resistance_ohm);
-  c.load_capacitance_f = circuit->non_negative("load_capacitance_f", c.load_capacitance_f);
-  c.substeps = static_cast<std::size_t>(circuit->integer("substeps", static_cast<long long>(c.substeps), 1));
-  if (c.substeps > 1000) circuit->fail("substeps", "= " + std::to_string(c.substeps) + " must be <= 1000");
+  study.circuit = read_circuit_params(*circuit);
   study.netlist = read_netlist_key(*circuit, study.file);
   study.circuit_input = circuit->enumeration("input", study.circuit_input, CIRCUIT_INPUT_NAMES);
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
