@@ -266,10 +266,13 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       // in the two lanes of a SIMD register where there is one), by Estrin's scheme (Knuth,
       // TAOCP vol. 2, Sec. 4.6.4): three levels of independent multiply-adds where Horner's
       // rule chains seven, so consecutive samples overlap.
-      static_assert(MOTION_PIECE_TERMS == 8, "Estrin's scheme below is written for degree 7");
-      std::array<Eigen::Array2d, MOTION_PIECE_TERMS> pc;
-      for (std::size_t k = 0; k < MOTION_PIECE_TERMS; ++k)
-        pc[k] = {osc.particular_m[k], k + 1 < MOTION_PIECE_TERMS ? static_cast<double>(k + 1) * osc.particular_m[k + 1] : 0.0};
+      static_assert(MOTION_PIECE_TERMS <= 8, "Estrin's scheme below is written for degree 7 at most");
+      std::array<Eigen::Array2d, 8> pc;
+      for (std::size_t k = 0; k < pc.size(); ++k) {
+        const double xk = k < MOTION_PIECE_TERMS ? osc.particular_m[k] : 0.0;
+        const double vk = k + 1 < MOTION_PIECE_TERMS ? static_cast<double>(k + 1) * osc.particular_m[k + 1] : 0.0;
+        pc[k] = {xk, vk};
+      }
       auto particular = [&](double tau, double& x, double& v) {
         const double t2 = tau * tau;
         const double t4 = t2 * t2;
