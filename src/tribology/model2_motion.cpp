@@ -265,19 +265,15 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       // x_p and x_p' / w0 as one polynomial in tau with coefficient pairs (both at once,
       // in the two lanes of a SIMD register where there is one), by Estrin's scheme (Knuth,
       // TAOCP vol. 2, Sec. 4.6.4): three levels of independent multiply-adds where Horner's
-      // rule chains seven, so consecutive samples overlap.
-      static_assert(MOTION_PIECE_TERMS <= 8, "Estrin's scheme below is written for degree 7 at most");
-      std::array<Eigen::Array2d, 8> pc;
-      for (std::size_t k = 0; k < pc.size(); ++k) {
-        const double xk = k < MOTION_PIECE_TERMS ? osc.particular_m[k] : 0.0;
-        const double vk = k + 1 < MOTION_PIECE_TERMS ? static_cast<double>(k + 1) * osc.particular_m[k + 1] : 0.0;
-        pc[k] = {xk, vk};
-      }
+      // rule chains six, so consecutive samples overlap.
+      static_assert(MOTION_PIECE_TERMS == 7, "Estrin's scheme below is written for degree 6");
+      std::array<Eigen::Array2d, MOTION_PIECE_TERMS> pc;
+      for (std::size_t k = 0; k < MOTION_PIECE_TERMS; ++k)
+        pc[k] = {osc.particular_m[k], k + 1 < MOTION_PIECE_TERMS ? static_cast<double>(k + 1) * osc.particular_m[k + 1] : 0.0};
       auto particular = [&](double tau, double& x, double& v) {
         const double t2 = tau * tau;
         const double t4 = t2 * t2;
-        const Eigen::Array2d r =
-            ((pc[0] + pc[1] * tau) + (pc[2] + pc[3] * tau) * t2) + ((pc[4] + pc[5] * tau) + (pc[6] + pc[7] * tau) * t2) * t4;
+        const Eigen::Array2d r = ((pc[0] + pc[1] * tau) + (pc[2] + pc[3] * tau) * t2) + ((pc[4] + pc[5] * tau) + pc[6] * t2) * t4;
         x = r[0];
         v = r[1];
       };
