@@ -181,11 +181,12 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
   // The walk needs a uniform grid (one flow for every half step); anything else is sampled
   // point by point.
   const double step = count >= 2 ? (times_s.back() - times_s.front()) / static_cast<double>(count - 1) : 0.0;
-  for (std::size_t j = 1; j < count; ++j) {
-    if (!(std::abs(times_s[j] - times_s[j - 1] - step) <= 1e-9 * step)) {
-      Motion::sample(times_s, midpoints, out);
-      return;
-    }
+  // Every spacing checked without an early exit, so the loop vectorises (a NaN fails too).
+  bool uniform = true;
+  for (std::size_t j = 1; j < count; ++j) uniform &= std::abs(times_s[j] - times_s[j - 1] - step) <= 1e-9 * step;
+  if (!uniform) {
+    Motion::sample(times_s, midpoints, out);
+    return;
   }
   out.x_m.resize(count);
   out.v_m_per_s.resize(count);
@@ -215,7 +216,16 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
     // belongs to the piece of the sample before it, evaluated there (extrapolating a
     // Hermite piece is exact: it is one polynomial), unless it lies beyond the piece end.
     const double piece_end = piece + 1 < pieces_.size() ? knots_[piece + 1].t_s : INFINITY;
+    // First sample after the piece end: guessed from the uniform spacing, then settled by
+    // the same comparisons a scan from j would make.
     std::size_t end = j;
+    if (!(piece_end < times_s[count - 1])) {
+      end = count;
+    } else if (step > 0.0) {
+      const double guess = std::floor((piece_end - times_s[0]) / step) + 1.0;  // <= count here
+      end = std::clamp(guess >= 0.0 ? static_cast<std::size_t>(guess) : 0, j, count);
+      while (end > j && times_s[end - 1] > piece_end) --end;
+    }
     while (end < count && times_s[end] <= piece_end) ++end;
     if (end == j) {  // the piece holds no sample: the next one
       ++piece;
