@@ -37,7 +37,7 @@ class StribeckFriction {
 };
 
 //! Terms of a sliding-propagator piece's polynomial (sliding_propagator.hpp).
-inline constexpr int MOTION_PIECE_TERMS = 8;
+inline constexpr int MOTION_PIECE_TERMS = 7;
 
 //! How the motion continues from one knot to the next.
 enum class PieceKind : unsigned char {

@@ -43,7 +43,7 @@ class Model2Motion final : public Motion {
 
   //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
   //! multiplication with its flow over one sample step (re-anchored in closed form
-  //! every 32 points, so rounding cannot drift: ~1e-15 relative), a few multiplications
+  //! every 128 points, so rounding cannot drift: ~1e-14 relative), a few multiplications
   //! per sample instead of an exponential and a sine.
   void sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const override;
 

@@ -82,8 +82,8 @@ class Collocation {
     double zw = z0_[1] - p_[1];
     double worst = 0.0;
     const double spacing = h_ / Q;
-    auto defect_at = [&](double hu, double hw, double tau, double* into) {
-      const Point p = at(hu, hw, tau);
+    auto defect_at = [&](double hw, double tau, double* into) {
+      const Point p = at(hw, tau);
       const double r = remainder(p.w);
       if (into != nullptr) *into = r;
       worst = std::max(worst, std::abs(r - p.forcing));
@@ -91,15 +91,15 @@ class Collocation {
     };
     auto midpoint_after = [&](double hu, double hw, double tau) {
       half_.apply(hu, hw);
-      (void)defect_at(hu, hw, tau + 0.5 * spacing, nullptr);
+      (void)defect_at(hw, tau + 0.5 * spacing, nullptr);
     };
     midpoint_after(zu, zw, 0.0);
     for (int i = 1; i <= Q; ++i) {
       node_.apply(zu, zw);
       const double tau = i * spacing;
-      const Point p = defect_at(zu, zw, tau, &g[static_cast<std::size_t>(i - 1)]);
+      const Point p = defect_at(zw, tau, &g[static_cast<std::size_t>(i - 1)]);
       if (i == Q - 1) midpoint_after(zu, zw, tau);
-      if (i == Q) end = {centre_ + p.u, p.w};
+      if (i == Q) end = {centre_ + displacement_at(zu, tau), p.w};
     }
     return worst;
   }
@@ -110,18 +110,22 @@ class Collocation {
 
  private:
   struct Point {
-    double u, w, forcing;
+    double w, forcing;
   };
-  //! The solution (free part hu, hw plus the polynomial) and P at tau.
-  [[nodiscard]] Point at(double hu, double hw, double tau) const {
-    if (!fitted_) return {hu, hw, 0.0};
-    double pu = p_[K], pf = d_[K], pw = dp_[K];
-    for (std::size_t j = K; j-- > 0;) {
-      pu = pu * tau + p_[j];
-      pf = pf * tau + d_[j];
-    }
+  //! The solution's velocity (free part hw plus the polynomial's) and P at tau.
+  [[nodiscard]] Point at(double hw, double tau) const {
+    if (!fitted_) return {hw, 0.0};
+    double pf = d_[K], pw = dp_[K];
+    for (std::size_t j = K; j-- > 0;) pf = pf * tau + d_[j];
     for (std::size_t j = K; j-- > 1;) pw = pw * tau + dp_[j];
-    return {hu + pu, hw + pw, pf};
+    return {hw + pw, pf};
+  }
+  //! The solution's displacement (free part hu plus the polynomial's) at tau.
+  [[nodiscard]] double displacement_at(double hu, double tau) const {
+    if (!fitted_) return hu;
+    double pu = p_[K];
+    for (std::size_t j = K; j-- > 0;) pu = pu * tau + p_[j];
+    return hu + pu;
   }
 
   const ScaledSystem& sys_;
