@@ -21,7 +21,7 @@ struct EnsembleOptions {
   std::optional<std::uint64_t> only{};  //!< run this realisation alone (no journal)
   bool restart = false;                //!< discard an existing journal instead of resuming it
   bool show_progress = true;           //!< progress bar with ETA and running statistics
-  WorkLimits limits;                   //!< a realisation over them is recorded invalid (run_realisation)
+  WorkLimits limits{};                 //!< a realisation over them is recorded invalid (run_realisation)
   //! Run only this slice of the realisations (and keep only its records from a journal);
   //! not with a target (a slice cannot see when the whole would have stopped).
   std::optional<ShardSpec> shard{};

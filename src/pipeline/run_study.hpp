@@ -48,7 +48,7 @@ struct RunResult {
 
 struct RunOptions {
   bool show_progress = true;  //!< progress bars on stderr (an ensemble runs many at once: off)
-  WorkLimits limits;          //!< the run is refused (InputError) when its estimate exceeds these
+  WorkLimits limits{};        //!< the run is refused (InputError) when its estimate exceeds these
   //! Keep every asperity's motion and the traces the study's [output] asks for (and the
   //! element currents its [spectrum] analyses). Off (an ensemble realisation), each motion
   //! is summed into the circuit and dropped: memory per asperity is a few bytes per sample

@@ -272,7 +272,9 @@ TEST(OutputPath, AnOutputThatIsNotARegularFileIsRefused) {
     EXPECT_EQ(result.exit_code, 2) << result.output;
     EXPECT_TRUE(contains(result.output, out + " exists and is " + kind)) << result.output;
   }
-  if (outputs.size() == 3) EXPECT_TRUE(std::filesystem::is_character_file(device));
+  if (outputs.size() == 3) {
+    EXPECT_TRUE(std::filesystem::is_character_file(device));
+  }
   EXPECT_TRUE(std::filesystem::is_fifo(fifo));
   EXPECT_TRUE(std::filesystem::is_directory(scratch.file("folder.h5")));
 }

@@ -210,14 +210,22 @@ Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::p
     for (const char* folder : {"studies/paper", "studies/surfaces", "studies/ensembles"})
       for (std::string text : toml_files(source / folder)) {
         // Surface files by absolute path, so the study reads them from the scratch folder.
-        for (std::size_t at = text.find("\"../../surfaces/"); at != std::string::npos; at = text.find("\"../../surfaces/"))
-          text.replace(at, 7, "\"" + (source / "").string());
+        const std::string relative = "\"../../surfaces/";
+        std::string absolute = "\"";  // not `"\"" + path`: GCC 12 warns falsely there (-Wrestrict, PR 105651)
+        absolute += (source / "surfaces/").string();
+        std::string rewritten;
+        std::size_t from = 0;
+        for (std::size_t at = text.find(relative); at != std::string::npos; at = text.find(relative, from)) {
+          rewritten.append(text, from, at - from).append(absolute);
+          from = at + relative.size();
+        }
+        text = rewritten.append(text, from, std::string::npos);
         c.inputs.push_back(text);
       }
   } else if (reader == "surface") {
     c.inputs = toml_files(source / "surfaces");
   } else if (reader == "csv") {
-    c.inputs.push_back(csv_of("t,x1,x2", 40, [](int j, int c) { return 1e-7 * c * std::sin(0.3 * j); }, 3));
+    c.inputs.push_back(csv_of("t,x1,x2", 40, [](int j, int column) { return 1e-7 * column * std::sin(0.3 * j); }, 3));
     c.inputs.push_back(csv_of("t,V", 64, [](int j, int) { return std::sin(0.7 * j) + 0.1 * std::cos(2.3 * j); }, 2));
     c.inputs.push_back("lower,upper,weight\n100e-6,105e-6,1\n105e-6,110e-6,3\n110e-6,120e-6,0.5\n");
   } else if (reader == "hdf5") {

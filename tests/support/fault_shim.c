@@ -21,6 +21,7 @@
  * when it may mount); this shim makes the tests portable to a CI machine without root. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <stdint.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -77,7 +78,9 @@ static void remember(int fd, int dirfd, const char* path) {
   if (fd >= 0 && fd < TRACKED_FDS) affected[fd] = (char)matches(dirfd, path);
 }
 
-#define NEXT(name) ((name##_fn)dlsym(RTLD_NEXT, #name))
+/* Through an integer: ISO C has no object-to-function pointer conversion (-Wpedantic), POSIX
+   guarantees dlsym's result converts. */
+#define NEXT(name) ((name##_fn)(uintptr_t)dlsym(RTLD_NEXT, #name))
 typedef int (*open_fn)(const char*, int, ...);
 
 /* With a stall marker: create it, then wait for the signal the test sends. */
