@@ -106,9 +106,11 @@ H5::Group Hdf5Writer::group_for(const std::string& dataset_path) {
   return group;
 }
 
-void Hdf5Writer::set_units(H5::DataSet& dataset, std::string_view units) {
-  H5::Attribute attribute = dataset.createAttribute("units", string_type(), H5::DataSpace(H5S_SCALAR));
-  attribute.write(string_type(), std::string(units));
+void Hdf5Writer::annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name) {
+  const H5::DataSpace scalar(H5S_SCALAR);
+  dataset.createAttribute("units", string_type(), scalar).write(string_type(), std::string(units));
+  if (long_name)
+    dataset.createAttribute("long_name", string_type(), scalar).write(string_type(), std::string(*long_name));
 }
 
 namespace {
@@ -133,6 +135,11 @@ H5::DSetCreatPropList column_layout(hsize_t size) {
 }  // namespace
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units) {
+  write(path, values, units, std::nullopt);
+}
+
+void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units,
+                       std::optional<std::string_view> long_name) {
   check_finite(path, values);
   guarded("cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
@@ -140,11 +147,17 @@ void Hdf5Writer::write(const std::string& path, std::span<const double> values, 
     H5::DataSet dataset =
         file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
-    set_units(dataset, units);
+    annotate(dataset, units, long_name);
+    extents_[path] = {values.size()};
   });
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units) {
+  write(path, rows, units, std::nullopt);
+}
+
+void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units,
+                       std::optional<std::string_view> long_name) {
   const std::size_t columns = rows.empty() ? 0 : rows.front().size();
   std::vector<double> flat;
   flat.reserve(rows.size() * columns);
@@ -158,22 +171,34 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
     group_for(path);
     H5::DataSet dataset = file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
     if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
-    set_units(dataset, units);
+    annotate(dataset, units, long_name);
+    extents_[path] = {rows.size(), columns};
   });
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units) {
+  write(path, values, units, std::nullopt);
+}
+
+void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
+                       std::optional<std::string_view> long_name) {
   guarded("cannot write " + path, [&] {
     const hsize_t dims[1] = {values.size()};
     group_for(path);
     H5::DataSet dataset =
         file_->createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims), column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
-    set_units(dataset, units);
+    annotate(dataset, units, long_name);
+    extents_[path] = {values.size()};
   });
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values, std::string_view units) {
+  write(path, values, units, std::nullopt);
+}
+
+void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values, std::string_view units,
+                       std::optional<std::string_view> long_name) {
   guarded("cannot write " + path, [&] {
     std::vector<const char*> pointers;
     pointers.reserve(values.size());
@@ -183,7 +208,8 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
     H5::DataSet dataset = file_->createDataSet(path, string_type(), H5::DataSpace(1, dims));
     if (!values.empty()) dataset.write(pointers.data(), string_type(), H5::DataSpace::ALL, H5::DataSpace::ALL,
                                        conversion_buffer(values.size(), sizeof(hvl_t)));
-    set_units(dataset, units);
+    annotate(dataset, units, long_name);
+    extents_[path] = {values.size()};
   });
 }
 
@@ -195,36 +221,29 @@ DatasetDescription Hdf5Writer::described(const std::string& path, std::optional<
   return description;
 }
 
-void Hdf5Writer::set_long_name(const std::string& path, const std::string& long_name) { attribute(path, "long_name", long_name); }
-
 void Hdf5Writer::write(const std::string& path, std::span<const double> values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units);
-  set_long_name(path, d.long_name);
+  write(path, values, d.units, d.long_name);
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows) {
   const DatasetDescription d = described(path);
-  write(path, rows, d.units);
-  set_long_name(path, d.long_name);
+  write(path, rows, d.units, d.long_name);
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units);
-  set_long_name(path, d.long_name);
+  write(path, values, d.units, d.long_name);
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units);
-  set_long_name(path, d.long_name);
+  write(path, values, d.units, d.long_name);
 }
 
 void Hdf5Writer::write_with_units(const std::string& path, std::span<const double> values, std::string_view units) {
   const DatasetDescription d = described(path, units);
-  write(path, values, d.units);
-  set_long_name(path, d.long_name);
+  write(path, values, d.units, d.long_name);
 }
 
 void Hdf5Writer::group(const std::string& path) {
@@ -292,7 +311,7 @@ void Hdf5Writer::commit() {
   std::string image;
   guarded("cannot finish the file", [&] {
     const hid_t id = file_->getId();
-    attach_dimension_scales(id, path_, described_);
+    attach_dimension_scales(id, path_, described_, extents_);
     if (H5Fflush(id, H5F_SCOPE_LOCAL) < 0) throw H5::FileIException("H5Fflush", "cannot flush the file");
     const ssize_t size = H5Fget_file_image(id, nullptr, 0);
     if (size < 0) throw H5::FileIException("H5Fget_file_image", "cannot take the file's image");
