@@ -64,8 +64,8 @@ class Hdf5Writer {
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, std::int64_t value);
 
-  //! Writes the file out and renames it to its final path. Memory: while it runs the file
-  //! exists twice (HDF5's image and its copy being written).
+  //! Writes the file out and renames it to its final path, from HDF5's memory (or, where
+  //! that cannot be, from a copy of it: then the file exists twice in memory).
   void commit();
 
  private:
