@@ -136,9 +136,9 @@ namespace {
 //! kilobytes at most and cost a single run's file a third of its write time (zlib's
 //! set-up per dataset and its deflate). Empty ones must (a chunk cannot be empty).
 H5::DSetCreatPropList column_layout(hsize_t size) {
-  H5::DSetCreatPropList layout;
   constexpr hsize_t SMALLEST_COMPRESSED = 8192;  // values: 64 KiB of doubles
-  if (size < SMALLEST_COMPRESSED) return layout;
+  if (size < SMALLEST_COMPRESSED) return H5::DSetCreatPropList::DEFAULT;  // shared, not a new list per dataset
+  H5::DSetCreatPropList layout;
   constexpr hsize_t CHUNK = 16384;
   const hsize_t chunk[1] = {std::min(size, CHUNK)};
   layout.setChunk(1, chunk);
