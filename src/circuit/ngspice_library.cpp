@@ -4,10 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <mutex>
+#include <type_traits>
 
 #include "core/error.hpp"
 
 #ifdef STENGMC_WITH_NGSPICE
+#include <dlfcn.h>
 #include <ngspice/sharedspice.h>
 #endif
 
@@ -41,6 +43,19 @@ struct Session {
 std::mutex library_mutex;
 Session session;
 bool initialised = false;
+
+//! libngspice's functions, from the library opened on first use: linked instead, the loader
+//! mapped and relocated its ~30 000 pointers at every start of stengmc, netlist or not
+//! (0.5 ms of the 4 ms a start costs). The name is the library's soname (Debian libngspice0).
+constexpr const char* NGSPICE_LIBRARY = "libngspice.so.0";
+struct NgspiceFunctions {
+  decltype(&ngSpice_Init) init = nullptr;
+  decltype(&ngSpice_Init_Sync) init_sync = nullptr;
+  decltype(&ngSpice_Command) command = nullptr;
+  decltype(&ngSpice_Circ) circ = nullptr;
+  decltype(&ngGet_Vec_Info) vector_info = nullptr;
+};
+NgspiceFunctions ngspice;
 
 std::string lower(std::string_view text) {
   std::string out(text);
@@ -86,7 +101,7 @@ int on_external_current(double* value, double, char* name, int, void*) {
 
 void command(const char* text) {
   std::string buffer(text);
-  ngSpice_Command(buffer.data());
+  ngspice.command(buffer.data());
 }
 
 std::string last_lines(const std::string& text, std::size_t count) {
@@ -119,17 +134,36 @@ std::string error_origin(const NgspiceTransient& transient) {
 std::vector<double> read_vector(const NgspiceTransient& transient, const std::string& name) {
   std::string buffer(name);
   // ngGet_Vec_Info returns a pointer to one static struct: copy before the next call.
-  const pvector_info info = ngGet_Vec_Info(buffer.data());
+  const pvector_info info = ngspice.vector_info(buffer.data());
   if (info == nullptr || info->v_realdata == nullptr || info->v_length <= 0)
     fail(transient, "the run has no vector '" + name + "'");
   return {info->v_realdata, info->v_realdata + info->v_length};
 }
 
+//! Opens libngspice (once; it stays loaded) and finds its functions.
+void load_library(const NgspiceTransient& transient) {
+  void* library = dlopen(NGSPICE_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr)
+    throw InputError(transient.origin + ": cannot load " + NGSPICE_LIBRARY + " (" + dlerror() +
+                     "); install libngspice0 (scripts/setup.sh) or use the built-in load ([circuit] "
+                     "load_resistance_ohm, load_capacitance_f)");
+  auto find = [&](auto& function, const char* name) {
+    function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(dlsym(library, name));
+    if (function == nullptr) throw InputError(transient.origin + ": " + NGSPICE_LIBRARY + " has no function " + name);
+  };
+  find(ngspice.init, "ngSpice_Init");
+  find(ngspice.init_sync, "ngSpice_Init_Sync");
+  find(ngspice.command, "ngSpice_Command");
+  find(ngspice.circ, "ngSpice_Circ");
+  find(ngspice.vector_info, "ngGet_Vec_Info");
+}
+
 NgspiceVectors run_locked(const NgspiceTransient& transient) {
   if (!initialised) {
-    ngSpice_Init(on_output, on_status, on_exit, nullptr, nullptr, on_thread, nullptr);
+    load_library(transient);
+    ngspice.init(on_output, on_status, on_exit, nullptr, nullptr, on_thread, nullptr);
     int ident = 0;
-    ngSpice_Init_Sync(on_external_voltage, on_external_current, nullptr, &ident, nullptr);
+    ngspice.init_sync(on_external_voltage, on_external_current, nullptr, &ident, nullptr);
     initialised = true;
   }
   session = Session{};
@@ -143,7 +177,7 @@ NgspiceVectors run_locked(const NgspiceTransient& transient) {
   std::vector<char*> pointers;
   for (std::string& card : cards) pointers.push_back(card.data());
   pointers.push_back(nullptr);
-  if (ngSpice_Circ(pointers.data()) != 0 || session.exit_requested) fail(transient, "the netlist does not load");
+  if (ngspice.circ(pointers.data()) != 0 || session.exit_requested) fail(transient, "the netlist does not load");
   if (session.errors.find("rror") != std::string::npos) fail(transient, "the netlist does not load");
   command("run");
   if (!session.callback_error.empty()) fail(transient, session.callback_error);

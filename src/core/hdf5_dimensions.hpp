@@ -6,6 +6,7 @@
 //! specification, "Dimensions and dimension scales"; CF conventions 1.10, 3.1-3.2).
 #include <hdf5.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct DescribedDataset {
   DatasetDescription description;
 };
 
+//! The extent of every dataset of a file, by path: what its writer knows without asking.
+using DatasetExtents = std::map<std::string, std::vector<hsize_t>>;
+
 //! Attaches the axes of every dataset to dimension scales. netCDF's scoping rule finds
 //! the scale of dimension `d` for a dataset in group G: the dataset named `d` in G or in
 //! its nearest ancestor group, which must itself be described as a coordinate (1-D, its
@@ -36,6 +40,9 @@ struct DescribedDataset {
 //! touched.
 //! Throws Error when a description contradicts the file (a wrong axis count or length, a
 //! dimension name taken by a dataset that is not its coordinate).
-void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets);
+//! `extents` names every dataset of the file with its extent (the pure dimensions made here
+//! are added): the file is not searched, and each dataset is opened once.
+void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets,
+                             DatasetExtents& extents);
 
 }  // namespace stengmc

@@ -64,17 +64,25 @@ class Hdf5Writer {
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, std::int64_t value);
 
-  //! Writes the file out and renames it to its final path. Memory: while it runs the file
-  //! exists twice (HDF5's image and its copy being written).
+  //! Writes the file out and renames it to its final path, from HDF5's memory (or, where
+  //! that cannot be, from a copy of it: then the file exists twice in memory).
   void commit();
 
  private:
   H5::Group group_for(const std::string& dataset_path);
-  void set_units(H5::DataSet& dataset, std::string_view units);
+  //! The dataset's units and, when given, its long_name (written while it is open).
+  void annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name);
+  //! The raw writes, with the long_name of a described dataset.
+  void write(const std::string& path, std::span<const double> values, std::string_view units, std::optional<std::string_view> long_name);
+  void write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units,
+             std::optional<std::string_view> long_name);
+  void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
+             std::optional<std::string_view> long_name);
+  void write(const std::string& path, const std::vector<std::string>& values, std::string_view units,
+             std::optional<std::string_view> long_name);
   //! The Describer's description of `path`, remembered for commit(); its units unless
   //! `units` is given.
   DatasetDescription described(const std::string& path, std::optional<std::string_view> units = std::nullopt);
-  void set_long_name(const std::string& path, const std::string& long_name);
   //! Runs HDF5 calls on the file; their failures become Error naming the output.
   template <class Call>
   void guarded(const std::string& what, Call call);
@@ -84,6 +92,7 @@ class Hdf5Writer {
   std::unique_ptr<H5::H5File> file_;
   Describer describe_;
   std::vector<DescribedDataset> described_;
+  DatasetExtents extents_;  //!< every dataset written, so commit() need not ask HDF5
 };
 
 //! Reads datasets and attributes from an existing file, with errors naming the file.

@@ -65,6 +65,12 @@ TEST(Hdf5Dimensions, CoordinatesArePreferredAndOtherAxesGetPureDimensions) {
   EXPECT_GT(H5DSis_attached(x, n, 0), 0);
   EXPECT_GT(H5DSis_attached(x, time, 1), 0);  // the root's /time, seen from /a
   EXPECT_GT(H5DSis_attached(k, n, 0), 0);
+  // The attachments are written once, in H5DS's layout, by the writer: HDF5's own readers of
+  // them (above, and these) see exactly one scale per axis and no attachment that was not made.
+  EXPECT_EQ(H5DSget_num_scales(x, 0), 1);
+  EXPECT_EQ(H5DSget_num_scales(x, 1), 1);
+  EXPECT_EQ(H5DSis_attached(x, time, 0), 0);
+  EXPECT_EQ(H5DSis_attached(k, time, 0), 0);
   EXPECT_EQ(attribute_text(x, "units"), "m");
   EXPECT_EQ(attribute_text(x, "long_name"), "a length");
   for (hid_t d : {time, x, k, n}) H5Dclose(d);

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +63,31 @@ TEST(Hdf5Writer, CommitMovesTheCompleteFileIntoPlace) {
   EXPECT_TRUE(std::filesystem::exists(out));
   EXPECT_FALSE(any_temporary(scratch.file("")));
   EXPECT_EQ(Hdf5Reader(out).vector("/group/x"), (std::vector<double>{1.0, 2.0}));
+}
+
+// commit() writes the file from the core driver's own memory, clearing the superblock's
+// consistency flags as H5Fget_file_image does (an open file marks itself open for writing
+// there). A file smaller than the driver's 1 MiB step and one larger than it: each must
+// come back whole, with the flags of a closed file (superblock version 0, bytes 20-23).
+TEST(Hdf5Writer, CommittedFilesAreWholeAndMarkedClosed) {
+  testing::ScratchDir scratch("hdf5-image");
+  for (const std::size_t count : {std::size_t{3}, std::size_t{400'000}}) {
+    const std::string out = scratch.file("out" + std::to_string(count) + ".h5");
+    std::vector<double> values(count);
+    for (std::size_t i = 0; i < count; ++i) values[i] = std::sin(0.37 * static_cast<double>(i)) * 1e-6;  // incompressible
+    {
+      Hdf5Writer file(out);
+      file.write("/x", values, "m");
+      file.commit();
+    }
+    std::ifstream in(out, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GE(bytes.size(), 24u);
+    EXPECT_EQ(bytes.substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8));
+    EXPECT_EQ(bytes[8], '\0') << "superblock version";
+    EXPECT_EQ(bytes.substr(20, 4), std::string(4, '\0')) << "file consistency flags of " << out;
+    EXPECT_EQ(Hdf5Reader(out).vector("/x"), values);
+  }
 }
 
 // The writer gives HDF5 a string-conversion buffer sized to the data, at most 1 MiB
