@@ -266,7 +266,7 @@ std::vector<double> TomlTable::number_list(std::string_view key) {
     } else if (const auto* floating = item.as_floating_point()) {
       value = floating->get();
     } else {
-      fail(key, "[" + std::to_string(i) + "] is " + describe(item) + "; expected a number");
+      fail(key, std::string("[") + std::to_string(i) + "] is " + describe(item) + "; expected a number");
     }
     if (!std::isfinite(value)) fail(key, "[" + std::to_string(i) + "] is not a finite number");
     out.push_back(value);
@@ -282,9 +282,9 @@ std::vector<std::string> TomlTable::string_list(std::string_view key, const std:
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of strings, each one of " + join(allowed));
   for (std::size_t i = 0; i < array->size(); ++i) {
     const auto* text = (*array)[i].as_string();
-    if (!text) fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a string");
+    if (!text) fail(key, std::string("[") + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a string");
     if (std::find(allowed.begin(), allowed.end(), text->get()) == allowed.end())
-      fail(key, "[" + std::to_string(i) + "] = \"" + text->get() + "\" is not one of " + join(allowed));
+      fail(key, std::string("[") + std::to_string(i) + "] = \"" + text->get() + "\" is not one of " + join(allowed));
     out.push_back(text->get());
   }
   return out;
@@ -306,7 +306,7 @@ std::vector<TomlTable> TomlTable::table_array(std::string_view key) {
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of tables ([[" + std::string(key) + "]])");
   for (std::size_t i = 0; i < array->size(); ++i) {
     const auto* sub = (*array)[i].as_table();
-    if (!sub) fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a table");
+    if (!sub) fail(key, std::string("[") + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a table");
     out.push_back(TomlTable(*document_, sub, (path_.empty() ? "" : path_ + ".") + std::string(key) + "[" + std::to_string(i) + "]"));
   }
   return out;

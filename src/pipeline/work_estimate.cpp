@@ -42,7 +42,7 @@ void add_tribology(const Study& study, double n, double samples, double natural_
     const double drive_hz = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI);
     const double fastest = std::max(drive_hz, natural_hz);
     e.events = n * (EVENTS_PER_PERIOD * duration * fastest + 4.0);
-    e.add_memory("~" + count(e.events) + " stick/slip events (" + count(n) + " asperities, " + format_number(duration) +
+    e.add_memory(std::string("~") + count(e.events) + " stick/slip events (" + count(n) + " asperities, " + format_number(duration) +
                      " s at up to " + format_number(fastest) + " Hz)",
                  e.events * BYTES_PER_EVENT);
     if (study.model1.solver == Model1Solver::exact) {
@@ -64,7 +64,7 @@ void add_tribology(const Study& study, double n, double samples, double natural_
   e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity) + " steps", n * per_asperity);
   e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity) + " steps",
                n * per_asperity * MODEL2_BYTES_PER_STEP);
-  e.add_memory("~" + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
+  e.add_memory(std::string("~") + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
 }
 
 //! Spectra of a signal of `samples` samples and `currents` element currents; `file`: the

@@ -59,7 +59,7 @@ void expect_every_layout_equals_one_process(const std::string& text, const std::
   ASSERT_EQ(single.exit_code, 0) << single.output;
   for (int ranks : {1, 2, 3})
     for (int threads : {1, 2}) {
-      const std::string out = scratch.file("p" + std::to_string(ranks) + "t" + std::to_string(threads) + ".h5");
+      const std::string out = scratch.file(std::string("p") + std::to_string(ranks) + "t" + std::to_string(threads) + ".h5");
       const auto run = run_mpi(ranks, "run " + study + " -j " + std::to_string(threads) + " -o " + out, scratch);
       ASSERT_EQ(run.exit_code, 0) << ranks << " ranks x " << threads << " threads: " << run.output;
       EXPECT_EQ(file_differences(reference, out, scratch), "") << ranks << " ranks x " << threads << " threads";

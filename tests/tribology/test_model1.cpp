@@ -42,6 +42,11 @@ struct RefEvent {
 // event is located by bisection, re-integrating one RKF78 step from the accepted step's start
 // to each trial time; a stick ends where |k (x0 - x_s)| - mu_s N changes sign, scanned then
 // bisected. Nothing here uses the solver's closed form.
+// Boost.Odeint's steppers copy their scratch arrays (std::array, left uninitialised until
+// the first step) when make_controlled takes one by value: GCC 12 reports the copy
+// (-Wmaybe-uninitialized) though nothing reads those values before a step writes them.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 std::vector<RefEvent> reference_events(const Asperity& asp, const Model1Params& p, double t_end) {
   namespace ode = boost::numeric::odeint;
   using Y = std::array<double, 2>;  // (x / L, v / (L w0))
@@ -132,6 +137,7 @@ std::vector<RefEvent> reference_events(const Asperity& asp, const Model1Params& 
   }
   return events;
 }
+#pragma GCC diagnostic pop
 
 std::string kinds(const std::vector<RefEvent>& events) {
   std::string out;
