@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "core/build_info.hpp"
 #include "core/error.hpp"
+#include "core/huge_page_heap.hpp"
 #include "ensemble/process_world.hpp"
 
 namespace {
@@ -56,6 +57,7 @@ bool refused_without_mpi() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  stengmc::back_the_heap_with_huge_pages();  // before anything allocates much: ~1 000 page faults fewer per run
   const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
   if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
