@@ -47,12 +47,13 @@ class Handle {
 };
 
 //! Attaches scales knowing the file from its writer: which datasets exist and their
-//! extents come from `extents`, which datasets are scales is remembered, and each dataset
-//! is opened once (asking HDF5 instead cost a single run's file a fifth of its CPU time).
+//! extents come from its record of them, the datasets it holds open are used as they are,
+//! which datasets are scales is remembered, and any other dataset is opened once (asking
+//! HDF5 instead cost a single run's file a fifth of its CPU time).
 class ScaleAttacher {
  public:
-  ScaleAttacher(hid_t file, std::string file_name, const std::vector<DescribedDataset>& datasets, DatasetExtents& extents)
-      : file_(file), file_name_(std::move(file_name)), extents_(extents) {
+  ScaleAttacher(hid_t file, std::string file_name, const std::vector<DescribedDataset>& datasets, WrittenDatasets& written)
+      : file_(file), file_name_(std::move(file_name)), written_(written) {
     for (const DescribedDataset& d : datasets) described_[d.path] = &d.description;
   }
 
@@ -116,9 +117,11 @@ class ScaleAttacher {
  private:
   [[noreturn]] void fail(const std::string& what) const { throw Error(file_name_ + ": " + what); }
 
-  hobj_ref_t reference_to(const std::string& path) const {
+  //! A reference to the dataset at `path`, made from its open identifier (".": itself)
+  //! rather than by walking the path from the root.
+  hobj_ref_t reference_to(const std::string& path) {
     hobj_ref_t reference;
-    if (H5Rcreate(&reference, file_, path.c_str(), H5R_OBJECT, -1) < 0) fail("cannot refer to " + path);
+    if (H5Rcreate(&reference, open(path), ".", H5R_OBJECT, -1) < 0) fail("cannot refer to " + path);
     return reference;
   }
 
@@ -130,8 +133,11 @@ class ScaleAttacher {
     if (attribute.get() < 0 || H5Awrite(attribute.get(), type, values) < 0) fail("cannot write " + path + "@" + name);
   }
 
-  //! The dataset at `path`, opened on first use and closed with the attacher.
+  //! The dataset at `path`: as its writer holds it, or opened on first use and closed with
+  //! the attacher.
   hid_t open(const std::string& path) {
+    if (const auto held = written_.find(path); held != written_.end() && held->second.id != H5I_INVALID_HID)
+      return held->second.id;
     auto found = open_.find(path);
     if (found != open_.end()) return found->second->get();
     const hid_t id = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
@@ -141,9 +147,9 @@ class ScaleAttacher {
   }
 
   const std::vector<hsize_t>& extent_of(const std::string& path) const {
-    const auto found = extents_.find(path);
-    if (found == extents_.end()) fail("dataset " + path + " was not written");
-    return found->second;
+    const auto found = written_.find(path);
+    if (found == written_.end()) fail("dataset " + path + " was not written");
+    return found->second.extent;
   }
 
   //! The length of a 1-D dataset (0 for any other).
@@ -158,7 +164,7 @@ class ScaleAttacher {
   }
 
   //! A dataset at `path` (not a group: /asperity/x's dimension "asperity" is no group).
-  bool dataset_exists(const std::string& path) const { return extents_.count(path) > 0; }
+  bool dataset_exists(const std::string& path) const { return written_.count(path) > 0; }
 
   //! The dataset named `name` seen from `group` (netCDF's scoping), or "".
   std::string visible(const std::string& group, const std::string& name) const {
@@ -192,7 +198,7 @@ class ScaleAttacher {
     const hid_t scale = H5Dcreate2(file_, made.c_str(), H5T_IEEE_F32BE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (scale < 0) fail("cannot create dimension " + made);
     open_.emplace(made, std::make_unique<Handle>(scale, H5Dclose));
-    extents_[made] = {length};
+    written_[made].extent = {length};
     char marker[96];
     std::snprintf(marker, sizeof marker, "This is a netCDF dimension but not a netCDF variable.%10llu",
                   static_cast<unsigned long long>(length));
@@ -210,7 +216,7 @@ class ScaleAttacher {
 
   hid_t file_;
   std::string file_name_;
-  DatasetExtents& extents_;
+  WrittenDatasets& written_;
   std::map<std::string, const DatasetDescription*> described_;
   std::map<std::string, std::unique_ptr<Handle>> open_;
   std::set<std::string> scales_;
@@ -223,8 +229,8 @@ class ScaleAttacher {
 }  // namespace
 
 void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets,
-                             DatasetExtents& extents) {
-  ScaleAttacher attacher(file, file_name, datasets, extents);
+                             WrittenDatasets& written) {
+  ScaleAttacher attacher(file, file_name, datasets, written);
   // Coordinates first: a dataset's scale must be one before anything attaches to it.
   for (const DescribedDataset& d : datasets)
     if (names_itself(d.path, d.description)) attacher.attach(d);

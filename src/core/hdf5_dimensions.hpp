@@ -25,8 +25,15 @@ struct DescribedDataset {
   DatasetDescription description;
 };
 
-//! The extent of every dataset of a file, by path: what its writer knows without asking.
-using DatasetExtents = std::map<std::string, std::vector<hsize_t>>;
+//! A dataset as its writer knows it without asking HDF5: its extent and, while the writer
+//! holds it open, its identifier (H5I_INVALID_HID otherwise).
+struct WrittenDataset {
+  std::vector<hsize_t> extent;
+  hid_t id = H5I_INVALID_HID;
+};
+
+//! Every dataset of a file, by path.
+using WrittenDatasets = std::map<std::string, WrittenDataset>;
 
 //! Attaches the axes of every dataset to dimension scales. netCDF's scoping rule finds
 //! the scale of dimension `d` for a dataset in group G: the dataset named `d` in G or in
@@ -40,9 +47,10 @@ using DatasetExtents = std::map<std::string, std::vector<hsize_t>>;
 //! touched.
 //! Throws Error when a description contradicts the file (a wrong axis count or length, a
 //! dimension name taken by a dataset that is not its coordinate).
-//! `extents` names every dataset of the file with its extent (the pure dimensions made here
-//! are added): the file is not searched, and each dataset is opened once.
+//! `written` names every dataset of the file with its extent (the pure dimensions made here
+//! are added): the file is not searched, a dataset the writer holds open is used as it is,
+//! and any other is opened once.
 void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets,
-                             DatasetExtents& extents);
+                             WrittenDatasets& written);
 
 }  // namespace stengmc

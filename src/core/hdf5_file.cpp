@@ -109,16 +109,24 @@ void Hdf5Writer::guarded(const std::string& what, Call call) {
   }
 }
 
-H5::Group Hdf5Writer::group_for(const std::string& dataset_path) {
-  H5::Group group = file_->openGroup("/");
-  std::size_t start = 1;
-  for (std::size_t slash = dataset_path.find('/', start); slash != std::string::npos;
-       slash = dataset_path.find('/', start)) {
-    const std::string name = dataset_path.substr(start, slash - start);
-    group = group.nameExists(name) ? group.openGroup(name) : group.createGroup(name);
-    start = slash + 1;
-  }
-  return group;
+H5::Group& Hdf5Writer::group_for(const std::string& dataset_path) {
+  const std::size_t slash = dataset_path.rfind('/');
+  const std::string path = slash == 0 || slash == std::string::npos ? "/" : dataset_path.substr(0, slash);
+  if (const auto found = groups_.find(path); found != groups_.end()) return found->second;
+  if (path == "/") return groups_.emplace(path, file_->openGroup("/")).first->second;
+  H5::Group& parent = group_for(path);
+  const std::string name = path.substr(path.rfind('/') + 1);
+  H5::Group group = parent.nameExists(name) ? parent.openGroup(name) : parent.createGroup(name);
+  return groups_.emplace(path, std::move(group)).first->second;
+}
+
+H5::DataSet& Hdf5Writer::create_dataset(const std::string& path, const H5::DataType& type,
+                                        const std::vector<hsize_t>& extent, const H5::DSetCreatPropList& layout) {
+  H5::Group& group = group_for(path);
+  const H5::DataSpace space(static_cast<int>(extent.size()), extent.data());
+  H5::DataSet& dataset = datasets_[path] = group.createDataSet(path.substr(path.rfind('/') + 1), type, space, layout);
+  written_[path] = {extent, dataset.getId()};
+  return dataset;
 }
 
 void Hdf5Writer::annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name) {
@@ -157,13 +165,10 @@ void Hdf5Writer::write(const std::string& path, std::span<const double> values, 
                        std::optional<std::string_view> long_name) {
   check_finite(path, values);
   guarded("cannot write " + path, [&] {
-    const hsize_t dims[1] = {values.size()};
-    group_for(path);
-    H5::DataSet dataset =
-        file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(1, dims), column_layout(values.size()));
+    H5::DataSet& dataset =
+        create_dataset(path, H5::PredType::NATIVE_DOUBLE, {values.size()}, column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
     annotate(dataset, units, long_name);
-    extents_[path] = {values.size()};
   });
 }
 
@@ -182,12 +187,9 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
   }
   check_finite(path, flat);
   guarded("cannot write " + path, [&] {
-    const hsize_t dims[2] = {rows.size(), columns};
-    group_for(path);
-    H5::DataSet dataset = file_->createDataSet(path, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(2, dims));
+    H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_DOUBLE, {rows.size(), columns});
     if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
     annotate(dataset, units, long_name);
-    extents_[path] = {rows.size(), columns};
   });
 }
 
@@ -198,13 +200,10 @@ void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> va
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
                        std::optional<std::string_view> long_name) {
   guarded("cannot write " + path, [&] {
-    const hsize_t dims[1] = {values.size()};
-    group_for(path);
-    H5::DataSet dataset =
-        file_->createDataSet(path, H5::PredType::NATIVE_INT64, H5::DataSpace(1, dims), column_layout(values.size()));
+    H5::DataSet& dataset =
+        create_dataset(path, H5::PredType::NATIVE_INT64, {values.size()}, column_layout(values.size()));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
     annotate(dataset, units, long_name);
-    extents_[path] = {values.size()};
   });
 }
 
@@ -218,13 +217,10 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
     std::vector<const char*> pointers;
     pointers.reserve(values.size());
     for (const auto& v : values) pointers.push_back(v.c_str());
-    const hsize_t dims[1] = {values.size()};
-    group_for(path);
-    H5::DataSet dataset = file_->createDataSet(path, string_type(), H5::DataSpace(1, dims));
+    H5::DataSet& dataset = create_dataset(path, string_type(), {values.size()});
     if (!values.empty()) dataset.write(pointers.data(), string_type(), H5::DataSpace::ALL, H5::DataSpace::ALL,
                                        conversion_buffer(values.size(), sizeof(hvl_t)));
     annotate(dataset, units, long_name);
-    extents_[path] = {values.size()};
   });
 }
 
@@ -280,45 +276,35 @@ std::optional<H5::Attribute> find_attribute(const H5::H5File& file, const std::s
   return group.openAttribute(name);
 }
 
-//! Calls `write` with the group or dataset at `path` (attributes go on either).
-template <typename Write>
-void on_object(H5::H5File& file, const std::string& path, Write write) {
-  if (path != "/" && file.childObjType(path) == H5O_TYPE_DATASET) {
-    H5::DataSet dataset = file.openDataSet(path);
-    write(static_cast<H5::H5Object&>(dataset));
-    return;
-  }
-  H5::Group group = file.openGroup(path);
-  write(static_cast<H5::H5Object&>(group));
-}
-
 }  // namespace
+
+H5::H5Object& Hdf5Writer::object_at(const std::string& path) {
+  if (const auto dataset = datasets_.find(path); dataset != datasets_.end()) return dataset->second;
+  if (const auto group = groups_.find(path); group != groups_.end()) return group->second;
+  return groups_.emplace(path, file_->openGroup(path)).first->second;  // fails for a path that is neither
+}
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::string_view value) {
   guarded("cannot write attribute " + object + "@" + name, [&] {
-    on_object(*file_, object, [&](H5::H5Object& target) {
-      H5::Attribute attribute = target.createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
-      attribute.write(string_type(), std::string(value));
-    });
+    H5::Attribute attribute = object_at(object).createAttribute(name, string_type(), H5::DataSpace(H5S_SCALAR));
+    attribute.write(string_type(), std::string(value));
   });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, double value) {
   if (!std::isfinite(value)) throw Error("refusing to write a non-finite attribute " + object + "@" + name);
   guarded("cannot write attribute " + object + "@" + name, [&] {
-    on_object(*file_, object, [&](H5::H5Object& target) {
-      H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
-      attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
-    });
+    H5::Attribute attribute =
+        object_at(object).createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
+    attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
   });
 }
 
 void Hdf5Writer::attribute(const std::string& object, const std::string& name, std::int64_t value) {
   guarded("cannot write attribute " + object + "@" + name, [&] {
-    on_object(*file_, object, [&](H5::H5Object& target) {
-      H5::Attribute attribute = target.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
-      attribute.write(H5::PredType::NATIVE_INT64, &value);
-    });
+    H5::Attribute attribute =
+        object_at(object).createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
+    attribute.write(H5::PredType::NATIVE_INT64, &value);
   });
 }
 
@@ -327,7 +313,9 @@ void Hdf5Writer::commit() {
   std::string_view image;
   guarded("cannot finish the file", [&] {
     const hid_t id = file_->getId();
-    attach_dimension_scales(id, path_, described_, extents_);
+    attach_dimension_scales(id, path_, described_, written_);
+    datasets_.clear();  // closed: their headers go to the file's image with the flush
+    groups_.clear();
     if (H5Fflush(id, H5F_SCOPE_LOCAL) < 0) throw H5::FileIException("H5Fflush", "cannot flush the file");
     // The image is the file's first EOA bytes (H5Fget_file_image). The core driver's handle
     // is the address of its memory (H5FDcore.c, H5FD__core_get_handle), which holds them

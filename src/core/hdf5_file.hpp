@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -69,7 +70,14 @@ class Hdf5Writer {
   void commit();
 
  private:
-  H5::Group group_for(const std::string& dataset_path);
+  //! The group that holds `dataset_path`, made (with its parents) if absent; kept open.
+  H5::Group& group_for(const std::string& dataset_path);
+  //! Creates the dataset at `path` in its group and keeps it open until commit(), so its
+  //! attributes, dimension scales and references need no walk of the path.
+  H5::DataSet& create_dataset(const std::string& path, const H5::DataType& type, const std::vector<hsize_t>& extent,
+                              const H5::DSetCreatPropList& layout = H5::DSetCreatPropList::DEFAULT);
+  //! The group or dataset at `path` ("/": the root), as held open or opened.
+  H5::H5Object& object_at(const std::string& path);
   //! The dataset's units and, when given, its long_name (written while it is open).
   void annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name);
   //! The raw writes, with the long_name of a described dataset.
@@ -92,7 +100,9 @@ class Hdf5Writer {
   std::unique_ptr<H5::H5File> file_;
   Describer describe_;
   std::vector<DescribedDataset> described_;
-  DatasetExtents extents_;  //!< every dataset written, so commit() need not ask HDF5
+  std::map<std::string, H5::Group> groups_;      //!< every group made or opened, by path ("/" the root)
+  std::map<std::string, H5::DataSet> datasets_;  //!< every dataset written, open until commit()
+  WrittenDatasets written_;  //!< every dataset written with its extent, so commit() need not ask HDF5
 };
 
 //! Reads datasets and attributes from an existing file, with errors naming the file.
