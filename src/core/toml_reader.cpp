@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <toml++/toml.h>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/input_file.hpp"
+#include "core/toml_library.hpp"
 
 namespace stengmc {
 

@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <sstream>
-#include <toml++/toml.h>  // the [[asperity]] entries, which TomlDocument cannot walk without reading them
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/toml_library.hpp"  // toml++: the [[asperity]] entries, which TomlDocument cannot walk without reading them
 #include "core/toml_reader.hpp"
 
 namespace stengmc {
