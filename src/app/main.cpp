@@ -4,6 +4,7 @@
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <string_view>
 
 #include "app/commands.hpp"
@@ -54,10 +55,22 @@ bool refused_without_mpi() {
   return true;
 }
 
-}  // namespace
+//! Ends the process once everything it wrote is closed and flushed, without the destructors
+//! of static objects and the atexit handlers: HDF5's clean-up alone frees each structure of
+//! the library one by one, ~0.5 ms of a single run, just before the system drops the whole
+//! address space. Files are closed by then (their writers are scoped in the commands) and
+//! MPI is finalised (its session is scoped in run_command_line). The sanitizer build exits
+//! normally: LeakSanitizer reports at exit.
+[[noreturn]] void end_process(int code) {
+  std::fflush(nullptr);
+#if defined(__SANITIZE_ADDRESS__)
+  std::exit(code);
+#else
+  std::_Exit(code);
+#endif
+}
 
-int main(int argc, char** argv) {
-  stengmc::back_the_heap_with_huge_pages();  // before anything allocates much: ~1 000 page faults fewer per run
+int run_command_line(int argc, char** argv) {
   const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
   if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
@@ -91,4 +104,11 @@ int main(int argc, char** argv) {
     return fail("error", "unknown failure (please report it with the command line and input files)", 1);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  stengmc::back_the_heap_with_huge_pages();  // before anything allocates much: ~1 000 page faults fewer per run
+  end_process(run_command_line(argc, argv));
 }
