@@ -4,6 +4,7 @@
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 #include <string_view>
 
 #include "app/commands.hpp"
@@ -56,7 +57,14 @@ bool refused_without_mpi() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
+  std::optional<stengmc::MpiSession> mpi;
+  try {
+    mpi.emplace(argc, argv);  // only when an MPI launcher started us
+  } catch (const std::exception& e) {
+    // No MPI run to end: every rank reports and exits, and the launcher ends the job.
+    std::fprintf(stderr, "stengmc: error: %s\n", e.what());
+    return 1;
+  }
   if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"
