@@ -31,7 +31,8 @@ enum class FailureKind : char { other = 0, input = 1, model = 2 };
 
 // Waiting threads poll (ProcessTransport::try_receive) and sleep in between instead of
 // blocking in a receive: OpenMPI busy-polls inside a blocking receive, which would take a
-// core from the realisations. A realisation takes 10 ms-1 s, so a 0.2 ms reaction time costs nothing.
+// core from the realisations. A realisation takes 10 ms-1 s, so a 0.2 ms reaction time
+// costs nothing.
 constexpr auto POLL_INTERVAL = std::chrono::microseconds(200);
 // Most records rank 0 takes in before journalling them together.
 constexpr std::size_t MAX_GROUP = 1024;
