@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string_view>
 
 #include "app/commands.hpp"
@@ -71,7 +72,14 @@ bool refused_without_mpi() {
 }
 
 int run_command_line(int argc, char** argv) {
-  const stengmc::MpiSession mpi(argc, argv);  // only when an MPI launcher started us
+  std::optional<stengmc::MpiSession> mpi;
+  try {
+    mpi.emplace(argc, argv);  // only when an MPI launcher started us
+  } catch (const std::exception& e) {
+    // No MPI run to end: every rank reports and exits, and the launcher ends the job.
+    std::fprintf(stderr, "stengmc: error: %s\n", e.what());
+    return 1;
+  }
   if (refused_without_mpi()) return 2;
   if (refused_under_mpi(argc, argv)) stengmc::abort_every_process(2);
   CLI::App app{"stengmc: Monte Carlo studies of sliding triboelectric sensors (S-TENG) on rough surfaces.\n"

@@ -4,19 +4,25 @@
 #include <cstdio>
 #include <cstdlib>
 
-#ifdef STENGMC_WITH_MPI
-#include <mpi.h>
-#endif
-
 #include "core/error.hpp"
+#include "ensemble/mpi_module.hpp"
+#include "ensemble/process_transport.hpp"
 
 namespace stengmc {
 
 namespace {
 ProcessWorld world_{};
+ProcessTransport* transport_ = nullptr;  //!< the started transport; null in a single process
 }  // namespace
 
 ProcessWorld process_world() { return world_; }
+
+ProcessTransport& process_transport() {
+  if (transport_ == nullptr)
+    throw Error(built_with_mpi() ? "no MPI run was started: only an MPI launch distributes realisations"
+                                 : "this stengmc was built without MPI (STENGMC_WITH_MPI=OFF)");
+  return *transport_;
+}
 
 bool built_with_mpi() {
 #ifdef STENGMC_WITH_MPI
@@ -38,40 +44,31 @@ int launcher_process_count() {
   return 1;
 }
 
-MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
-#ifdef STENGMC_WITH_MPI
-  if (!launched_by_mpi_launcher()) return;
-  int provided = 0;
-  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided) != MPI_SUCCESS)
-    throw Error("MPI_Init_thread failed: cannot start the MPI run");
+MpiSession::MpiSession(int& argc, char**& argv) {
+  if (!built_with_mpi() || !launched_by_mpi_launcher()) return;
+  ProcessTransport& transport = load_mpi_module();
+  ProcessTransport::Started started;
+  if (!transport.start(argc, argv, started)) throw Error("MPI_Init_thread failed: cannot start the MPI run");
+  transport_ = &transport;
   started_ = true;
-  MPI_Comm_rank(MPI_COMM_WORLD, &world_.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &world_.size);
-  if (provided < MPI_THREAD_MULTIPLE && world_.size > 1) {
+  world_ = {started.rank, started.size};
+  if (!started.thread_multiple && world_.size > 1) {
     if (world_.rank == 0)
       std::fprintf(stderr, "stengmc: error: this MPI library does not provide MPI_THREAD_MULTIPLE, which the "
                            "distributed ensemble needs (every thread of a worker talks to rank 0); run one process "
                            "per node with threads, or use an MPI built with thread support (Debian's OpenMPI is)\n");
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    transport.abort(1);
   }
-#endif
 }
 
 MpiSession::~MpiSession() {
-#ifdef STENGMC_WITH_MPI
-  if (started_) MPI_Finalize();
-#endif
+  if (started_) transport_->finish();
 }
 
 void abort_every_process(int exit_code) {
   std::fflush(stdout);
   std::fflush(stderr);
-#ifdef STENGMC_WITH_MPI
-  int initialised = 0, finalised = 0;
-  MPI_Initialized(&initialised);
-  MPI_Finalized(&finalised);
-  if (initialised && !finalised) MPI_Abort(MPI_COMM_WORLD, exit_code);
-#endif
+  if (transport_ != nullptr && transport_->active()) transport_->abort(exit_code);
   std::exit(exit_code);
 }
 

@@ -3,10 +3,13 @@
 //! srun). MPI is optional at build time (CMake option STENGMC_WITH_MPI) and at run time:
 //! it is started only when the environment says an MPI launcher started this process, so
 //! a plain `stengmc ...` of an MPI-enabled build behaves exactly as a build without MPI
-//! (docs/cluster.md).
+//! (docs/cluster.md). MPI itself is in a module opened only then (ensemble/mpi_module.hpp):
+//! the executable does not link it.
 #include <string>
 
 namespace stengmc {
+
+class ProcessTransport;
 
 struct ProcessWorld {
   int rank = 0;  //!< this process's rank (0: the one that journals and writes)
@@ -29,8 +32,14 @@ bool launched_by_mpi_launcher();
 //! when none says so; readable without MPI, so a build without it can tell it was launched.
 int launcher_process_count();
 
+//! The messages between the processes of the run MpiSession started.
+//! @throws Error when it started none (a single process; a build without MPI)
+ProcessTransport& process_transport();
+
 //! Starts MPI (MPI_THREAD_MULTIPLE: every OpenMP thread of a worker talks to rank 0) when
-//! built with it and launched by an MPI launcher; finalises it at the end of the scope.
+//! built with it and launched by an MPI launcher, opening the MPI module first; finalises it
+//! at the end of the scope.
+//! @throws Error when the module does not load (naming its path) or MPI does not start
 class MpiSession {
  public:
   MpiSession(int& argc, char**& argv);

@@ -1,23 +1,19 @@
 #include "ensemble/work_distribution.hpp"
 
-#include "core/error.hpp"
-
-#ifdef STENGMC_WITH_MPI
-
-#include <mpi.h>
 #include <omp.h>
 
 #include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
-#include <limits>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <utility>
 
+#include "core/error.hpp"
 #include "ensemble/journal.hpp"
+#include "ensemble/process_transport.hpp"
 #include "ensemble/process_world.hpp"
 
 namespace stengmc {
@@ -33,9 +29,10 @@ enum class ToRoot : char { request = 0, result = 1, failure = 2 };
 enum class ToWorker : char { work = 0, stop = 1 };
 enum class FailureKind : char { other = 0, input = 1, model = 2 };
 
-// Waiting threads poll (MPI_Improbe) and sleep in between instead of blocking in MPI_Recv:
-// OpenMPI busy-polls inside a blocking receive, which would take a core from the
-// realisations. A realisation takes 10 ms-1 s, so a 0.2 ms reaction time costs nothing.
+// Waiting threads poll (ProcessTransport::try_receive) and sleep in between instead of
+// blocking in a receive: OpenMPI busy-polls inside a blocking receive, which would take a
+// core from the realisations. A realisation takes 10 ms-1 s, so a 0.2 ms reaction time
+// costs nothing.
 constexpr auto POLL_INTERVAL = std::chrono::microseconds(200);
 // Most records rank 0 takes in before journalling them together.
 constexpr std::size_t MAX_GROUP = 1024;
@@ -56,25 +53,11 @@ std::string message_to_root(ToRoot kind, int slot) {
   return bytes;
 }
 
-void send(const std::string& bytes, int destination, int tag) {
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw Error("a record of " + std::to_string(bytes.size()) + " bytes is too large for one MPI message (2 GiB)");
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, destination, tag, MPI_COMM_WORLD);
-}
+void send(std::string_view bytes, int destination, int tag) { process_transport().send(bytes, destination, tag); }
 
-//! A waiting message from `source` with `tag` (MPI_ANY_SOURCE allowed), if any.
+//! A waiting message from `source` with `tag` (ANY_PROCESS allowed), if any.
 bool try_receive(int source, int tag, std::string& bytes, int& from) {
-  int flag = 0;
-  MPI_Message message;
-  MPI_Status status;
-  MPI_Improbe(source, tag, MPI_COMM_WORLD, &flag, &message, &status);
-  if (!flag) return false;
-  int count = 0;
-  MPI_Get_count(&status, MPI_BYTE, &count);
-  bytes.resize(static_cast<std::size_t>(count));
-  MPI_Mrecv(bytes.data(), count, MPI_BYTE, &message, MPI_STATUS_IGNORE);
-  from = status.MPI_SOURCE;
-  return true;
+  return process_transport().try_receive(source, tag, bytes, from);
 }
 
 std::string receive(int source, int tag) {
@@ -194,7 +177,7 @@ void WorkDistributor::State::serve() {
     // together with one fsync (group commit): the busier rank 0 gets, the less a record costs.
     int from = 0;
     std::size_t received = 0;
-    while (received < MAX_GROUP && try_receive(MPI_ANY_SOURCE, TAG_TO_ROOT, bytes, from)) {
+    while (received < MAX_GROUP && try_receive(ANY_PROCESS, TAG_TO_ROOT, bytes, from)) {
       handle(bytes, from, arrived);
       ++received;
     }
@@ -216,8 +199,7 @@ void WorkDistributor::State::serve() {
 WorkDistributor::WorkDistributor() : state_(std::make_unique<State>()) {
   const ProcessWorld world = process_world();
   std::vector<int> threads(static_cast<std::size_t>(world.size), 0);
-  int none = 0;
-  MPI_Gather(&none, 1, MPI_INT, threads.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  process_transport().gather_to_root(0, threads.data());
   for (int t : threads) state_->remote_threads += t;
   state_->service = std::thread([state = state_.get()] {
     try {
@@ -295,8 +277,7 @@ void WorkDistributor::finish() {
 }
 
 void serve_realisations(int threads, const ComputeRecord& compute) {
-  int mine = threads;
-  MPI_Gather(&mine, 1, MPI_INT, nullptr, 0, MPI_INT, 0, MPI_COMM_WORLD);
+  process_transport().gather_to_root(threads, nullptr);
   const std::string source = "rank " + std::to_string(process_world().rank);
 #pragma omp parallel num_threads(threads)
   {
@@ -329,21 +310,3 @@ void serve_realisations(int threads, const ComputeRecord& compute) {
 }
 
 }  // namespace stengmc
-
-#else  // without MPI: a single process never distributes
-
-namespace stengmc {
-
-struct WorkDistributor::State {};
-
-WorkDistributor::WorkDistributor() { throw Error("this stengmc was built without MPI (STENGMC_WITH_MPI=OFF)"); }
-WorkDistributor::~WorkDistributor() = default;
-void WorkDistributor::run(const std::vector<std::uint64_t>&, int, const ComputeRecord&, const DeliverRecords&) {}
-void WorkDistributor::finish() {}
-void serve_realisations(int, const ComputeRecord&) {
-  throw Error("this stengmc was built without MPI (STENGMC_WITH_MPI=OFF)");
-}
-
-}  // namespace stengmc
-
-#endif

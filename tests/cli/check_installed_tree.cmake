@@ -4,6 +4,8 @@
 # and the installed Python package (when built) imports and runs it too.
 # Fails unless each step exits 0 and its product exists, and if the installed binary
 # names the source or build tree (a compiled-in absolute path would break once moved).
+# With MPI (MPIEXEC and MPI_MODULE given), the moved binary also runs an ensemble under
+# mpirun, which opens the installed MPI module relative to it.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/results")
 
@@ -47,6 +49,18 @@ foreach(product fig2_k155.h5 fig2_k155.png gw_vb10.h5 gw_vb10.png)
     message(FATAL_ERROR "missing ${WORK_DIR}/results/${product}")
   endif()
 endforeach()
+# MPI: the module is installed (at the path MPI_MODULE, relative to the prefix) and found.
+if(MPIEXEC)
+  if(NOT EXISTS "${prefix}/${MPI_MODULE}")
+    message(FATAL_ERROR "the install lacks the MPI module ${MPI_MODULE}")
+  endif()
+  run_step("mpirun -np 2 stengmc run (ensemble)" "${MPIEXEC}" --allow-run-as-root --oversubscribe --bind-to none -np 2
+           "${prefix}/bin/stengmc" run "${prefix}/share/stengmc/examples/studies/ensembles/identifiability_quick.toml"
+           -j 1 --out quick.h5)
+  if(NOT EXISTS "${WORK_DIR}/results/quick.h5")
+    message(FATAL_ERROR "missing ${WORK_DIR}/results/quick.h5")
+  endif()
+endif()
 # The Python package (when built): imports from the moved tree and runs the same study.
 if(PYTHON_PACKAGE_DIR)
   run_step("python3 -c 'import stengmc'" ${CMAKE_COMMAND} -E env "PYTHONPATH=${prefix}/${PYTHON_PACKAGE_DIR}"

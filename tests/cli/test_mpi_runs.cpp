@@ -3,7 +3,9 @@
 // and attribute but the creation time), for P = 1, 2, 3 (3 oversubscribes this 2-core
 // machine) and 1 or 2 threads per rank, for an ensemble and a sweep; a job SIGKILLed
 // mid-way resumes, with another number of ranks, to that same file; a calibration bank
-// on 2 and 3 ranks is the one-process bank but for its timings. Built only with MPI.
+// on 2 and 3 ranks is the one-process bank but for its timings. Every launch here opens
+// the MPI module beside the binary (ensemble/mpi_module.cpp); a binary whose module is
+// missing or broken says which path it tried. Built only with MPI.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -219,6 +221,49 @@ TEST(Mpi, OnlyEnsembleRunsAreDistributedAndBadInputEndsEveryRankWithExitTwo) {
   const auto bad = run_mpi(3, "run " + broken + " -o " + scratch.file("b.h5"), scratch);
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("unknown_key"), std::string::npos) << bad.output;
+}
+
+TEST(Mpi, AMissingOrBrokenModuleIsAnErrorNamingItsPathAndTheModulePutThereRuns) {
+  // A copy of the binary in a folder of its own: the module is looked for at the same path
+  // relative to it as the build's module is to the build's binary (an install mirrors it).
+  ScratchDir scratch("mpi-module");
+  const std::filesystem::path binary = scratch.file("bin/stengmc");
+  std::filesystem::create_directories(binary.parent_path());
+  std::filesystem::copy_file(STENGMC_BINARY, binary);
+  const std::filesystem::path built_module = STENGMC_MPI_MODULE;
+  const std::filesystem::path expected =
+      (binary.parent_path() / built_module.lexically_relative(std::filesystem::path(STENGMC_BINARY).parent_path()))
+          .lexically_normal();
+  const std::string study = scratch.write("study.toml", distributed_study(4));
+  const std::string out = scratch.file("out.h5");
+  const std::string launch = mpirun_line(2) + binary.string() + " run " + study + " -j 1 -o " + out;
+
+  const auto missing = testing::run_command(launch, scratch);
+  EXPECT_NE(missing.exit_code, 0) << missing.output;
+  EXPECT_NE(missing.output.find("stengmc: error: an MPI launcher started stengmc, but its MPI module does not load: " +
+                                expected.string() + ": cannot open shared object file"),
+            std::string::npos)
+      << missing.output;
+  EXPECT_NE(missing.output.find("`cmake --install`"), std::string::npos) << missing.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+
+  // Not a shared object at that path: the loader's reason, same path. The launcher's
+  // variable alone (no mpirun) is enough to make stengmc want the module.
+  std::filesystem::create_directories(expected.parent_path());
+  std::ofstream(expected) << "not an ELF file\n";
+  const auto broken = testing::run_command("env OMPI_COMM_WORLD_SIZE=1 " + binary.string() + " --version", scratch);
+  EXPECT_EQ(broken.exit_code, 1) << broken.output;
+  EXPECT_NE(broken.output.find("its MPI module does not load: " + expected.string()), std::string::npos)
+      << broken.output;
+
+  // The module where it was looked for: the copy runs the ensemble, the one-process file.
+  std::filesystem::copy_file(built_module, expected, std::filesystem::copy_options::overwrite_existing);
+  const auto placed = testing::run_command(launch, scratch);
+  ASSERT_EQ(placed.exit_code, 0) << placed.output;
+  const std::string reference = scratch.file("one_process.h5");
+  const auto single = run_cli("run " + study + " -j 1 -o " + reference, scratch);
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  EXPECT_EQ(file_differences(reference, out, scratch), "");
 }
 
 }  // namespace
