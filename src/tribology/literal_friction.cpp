@@ -19,7 +19,8 @@ ForceAndSlope force_and_slope(const FrictionParameters& p, double v_r) {
 }  // namespace
 
 FrictionLaw literal_friction_law() {
-  return {"literal", "N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]", force, force_and_slope};
+  return {"literal", "N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]", force, force_and_slope,
+          forces_by<force>};
 }
 
 }  // namespace stengmc

@@ -34,9 +34,12 @@ class Collocation {
       : sys_(sys), h_(h), zeta_(-0.5 * jac(1, 1)), centre_(f[1] + y[0] + 2.0 * zeta_ * y[1]),
         z0_{y[0] - centre_, y[1]}, half_(OscillatorFlow::over(zeta_, 0.5 * h / Q)), node_(half_.doubled()) {}
 
-  //! g(w): the true acceleration minus the frozen one (it does not depend on u).
-  [[nodiscard]] double remainder(double w) const {
-    return sys_.friction_term(w) - centre_ + (2.0 * zeta_ - sys_.two_zeta()) * w;
+  //! g(w): the true acceleration minus the frozen one (it does not depend on u), at
+  //! several w at once (the friction law's evaluations then overlap).
+  template <std::size_t N>
+  void remainders(const std::array<double, N>& w, std::array<double, N>& g) const {
+    sys_.friction_terms(w, g);
+    for (std::size_t i = 0; i < N; ++i) g[i] = g[i] - centre_ + (2.0 * zeta_ - sys_.two_zeta()) * w[i];
   }
 
   //! Sets P from the remainder at the nodes and solves for the particular polynomial.
@@ -63,12 +66,14 @@ class Collocation {
 
   //! The remainder at the nodes of the frozen oscillator (before any fit).
   [[nodiscard]] std::array<double, Q> frozen_nodes() const {
-    std::array<double, Q> g{};
+    std::array<double, Q> w{};
     double zu = z0_[0], zw = z0_[1];
     for (std::size_t i = 0; i < Q; ++i) {
       node_.apply(zu, zw);
-      g[i] = remainder(zw);
+      w[i] = zw;
     }
+    std::array<double, Q> g{};
+    remainders(w, g);
     return g;
   }
 
@@ -78,17 +83,19 @@ class Collocation {
   double walk(std::array<double, Q>& g, Vec2& end) const {
     double zu = 0.0, zw = 0.0;
     free_start(zu, zw);
-    double worst = 0.0;
     const double spacing = h_ / Q;
+    std::array<double, Q> w{}, forcing{};
     for (int i = 1; i <= Q; ++i) {
       node_.apply(zu, zw);
       const double tau = i * spacing;
       const Point p = at(zw, tau);
-      const double r = remainder(p.w);
-      g[static_cast<std::size_t>(i - 1)] = r;
-      worst = std::max(worst, std::abs(r - p.forcing));
+      w[static_cast<std::size_t>(i - 1)] = p.w;
+      forcing[static_cast<std::size_t>(i - 1)] = p.forcing;
       if (i == Q) end = {centre_ + displacement_at(zu, tau), p.w};
     }
+    remainders(w, g);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < Q; ++i) worst = std::max(worst, std::abs(g[i] - forcing[i]));
     return worst;
   }
 
@@ -99,16 +106,16 @@ class Collocation {
     const double spacing = h_ / Q;
     double zu = 0.0, zw = 0.0;
     free_start(zu, zw);
-    double worst = 0.0;
-    auto defect_after = [&](double hu, double hw, double tau) {
+    auto midpoint_after = [&](double hu, double hw, double tau) {
       half_.apply(hu, hw);
-      const Point p = at(hw, tau + 0.5 * spacing);
-      worst = std::max(worst, std::abs(remainder(p.w) - p.forcing));
+      return at(hw, tau + 0.5 * spacing);
     };
-    defect_after(zu, zw, 0.0);
+    const Point first = midpoint_after(zu, zw, 0.0);
     for (int i = 1; i < Q; ++i) node_.apply(zu, zw);
-    defect_after(zu, zw, (Q - 1) * spacing);
-    return worst;
+    const Point last = midpoint_after(zu, zw, (Q - 1) * spacing);
+    std::array<double, 2> g{};
+    remainders(std::array<double, 2>{first.w, last.w}, g);
+    return std::max(std::max(0.0, std::abs(g[0] - first.forcing)), std::abs(g[1] - last.forcing));
   }
 
   [[nodiscard]] double zeta() const { return zeta_; }

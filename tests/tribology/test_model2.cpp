@@ -12,6 +12,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "core/error.hpp"
+#include "tribology/friction_law.hpp"
 #include "tribology/model2.hpp"
 
 namespace stengmc {
@@ -183,6 +184,28 @@ TEST(Model2, FrictionFormsMatchModelDefinition) {
     EXPECT_NEAR(model2_friction(p, n, vr), n * stribeck * sgn, 1e-15 * n);
     const Model2Params q = table1_params(1.0, "literal");
     EXPECT_NEAR(model2_friction(q, n, vr), n * (0.22 + (stribeck - 0.22) * sgn), 1e-15 * n);
+  }
+}
+
+// Every law's batched forces() (the sliding propagator evaluates its collocation nodes
+// through it) must give exactly force() one by one: the integrator's results may not depend
+// on which of the two it calls. Bitwise, at relative velocities on both sides of the fast
+// atan series' threshold (|s v_r| = 64) and of the Stribeck polynomial's (c_s |v_r| = 1e-3),
+// in an order that mixes them; a law whose batch pointed at another formula, or dropped or
+// shifted an element, fails here.
+TEST(Model2, BatchedFrictionEqualsOneByOne) {
+  const std::vector<double> v_r{-2e4, -3.0, -0.0641, -0.0639, -1e-3, 0.0, 2e-4, 0.0639, 0.0641, 1.0, 10.0, 9.9e3, 1.1e4, 2e5};
+  for (const FrictionLaw& law : friction_laws()) {
+    FrictionParameters p;
+    p.normal_load_n = 1e-3;
+    p.kinetic_coefficient = 0.22;
+    p.static_coefficient = 0.28;
+    p.stribeck_decay_s_per_m = 1e-7 * 1e3;  // puts the polynomial's threshold at |v_r| = 10 m/s
+    p.atan_sharpness_s_per_m = 1e3;
+    std::vector<double> batch(v_r.size(), std::numeric_limits<double>::quiet_NaN());
+    law.forces(p, v_r.data(), batch.data(), v_r.size());
+    for (std::size_t i = 0; i < v_r.size(); ++i)
+      EXPECT_EQ(batch[i], law.force(p, v_r[i])) << law.name << ", v_r = " << v_r[i];
   }
 }
 
