@@ -33,7 +33,8 @@ struct FrictionLaw {
   //! The same with dF/dv_r, C^1 in v_r (the integrator's Jacobian must be exact on both
   //! sides of v_r = 0).
   ForceAndSlope (*force_and_slope)(const FrictionParameters& p, double v_r);
-  //! force() at `count` relative velocities at once, the same values one by one: one loop
+  //! force() at `count` relative velocities at once (force_n may be v_r itself: each
+  //! element is read before it is written), the same values one by one: one loop
   //! over the law's inlined formula, whose independent evaluations the processor overlaps
   //! (the sliding propagator's collocation nodes; a call each through the pointer above
   //! costs more there). A law defines it as forces_by<its force>.
