@@ -37,15 +37,9 @@ struct FrictionLaw {
   //! element is read before it is written), the same values one by one: one loop
   //! over the law's inlined formula, whose independent evaluations the processor overlaps
   //! (the sliding propagator's collocation nodes; a call each through the pointer above
-  //! costs more there). A law defines it as forces_by<its force>.
+  //! costs more there; stribeck::forces_by).
   void (*forces)(const FrictionParameters& p, const double* v_r, double* force_n, std::size_t count);
 };
-
-//! FrictionLaw::forces for a law whose force() is `Force`.
-template <double (*Force)(const FrictionParameters&, double)>
-void forces_by(const FrictionParameters& p, const double* v_r, double* force_n, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) force_n[i] = Force(p, v_r[i]);
-}
 
 //! Every law, in the order error messages list them; the first is the default.
 const std::vector<FrictionLaw>& friction_laws();
