@@ -2,6 +2,7 @@
 //! Model 2's friction laws F(v_r) (MODEL.md §1): `[model] friction_form` names one. A new
 //! law is one file defining its FrictionLaw and one line in friction_laws.cpp; the
 //! integrator calls it through the law's function pointers, looked up once per asperity.
+#include <cstddef>
 #include <string_view>
 #include <vector>
 
@@ -32,6 +33,12 @@ struct FrictionLaw {
   //! The same with dF/dv_r, C^1 in v_r (the integrator's Jacobian must be exact on both
   //! sides of v_r = 0).
   ForceAndSlope (*force_and_slope)(const FrictionParameters& p, double v_r);
+  //! force() at `count` relative velocities at once (force_n may be v_r itself: each
+  //! element is read before it is written), the same values one by one: one loop
+  //! over the law's inlined formula, whose independent evaluations the processor overlaps
+  //! (the sliding propagator's collocation nodes; a call each through the pointer above
+  //! costs more there; stribeck::forces_by).
+  void (*forces)(const FrictionParameters& p, const double* v_r, double* force_n, std::size_t count);
 };
 
 //! Every law, in the order error messages list them; the first is the default.

@@ -6,8 +6,11 @@
 namespace stengmc {
 namespace {
 
+template <bool Series>
 double force(const FrictionParameters& p, double v_r) {
-  return p.normal_load_n * (p.kinetic_coefficient + stribeck::excess(p, v_r) * stribeck::regularised_sign(p, v_r));
+  const double excess = Series ? stribeck::excess_series(p, v_r) : stribeck::excess(p, v_r);
+  const double sign = Series ? stribeck::regularised_sign_far(p, v_r) : stribeck::regularised_sign(p, v_r);
+  return p.normal_load_n * (p.kinetic_coefficient + excess * sign);
 }
 
 ForceAndSlope force_and_slope(const FrictionParameters& p, double v_r) {
@@ -19,7 +22,8 @@ ForceAndSlope force_and_slope(const FrictionParameters& p, double v_r) {
 }  // namespace
 
 FrictionLaw literal_friction_law() {
-  return {"literal", "N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]", force, force_and_slope};
+  return {"literal", "N [mu_k + (mu_s - mu_k) exp(-c_s|v_r|) (2/pi) atan(s v_r)]", force<false>, force_and_slope,
+          stribeck::forces_by<force<false>, force<true>>};
 }
 
 }  // namespace stengmc

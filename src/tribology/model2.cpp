@@ -46,8 +46,9 @@ Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, co
   out.v_m_per_s = std::move(samples.v_m_per_s);
   const StribeckFriction friction(params, asperity.normal_load_n);
   out.friction_n.resize(grid.count);
-  for (std::size_t j = 0; j < grid.count; ++j)
-    out.friction_n[j] = friction.force(params.belt_velocity_m_per_s - out.v_m_per_s[j]);
+  // v_r first, then F in place, in one batch (the law's formula inlined in its loop).
+  for (std::size_t j = 0; j < grid.count; ++j) out.friction_n[j] = params.belt_velocity_m_per_s - out.v_m_per_s[j];
+  friction.forces(out.friction_n.data(), out.friction_n.data(), grid.count);
 
   out.events = motion->relative_velocity_events(params.belt_velocity_m_per_s);
   out.motion = std::move(motion);

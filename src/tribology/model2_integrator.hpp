@@ -24,6 +24,11 @@ class StribeckFriction {
   //! F(v_r) [N] for relative velocity v_r [m/s].
   [[nodiscard]] double force(double v_r) const { return law_->force(parameters_, v_r); }
 
+  //! F at `count` relative velocities [m/s] into force_n [N]: the same values as force().
+  void forces(const double* v_r, double* force_n, std::size_t count) const {
+    law_->forces(parameters_, v_r, force_n, count);
+  }
+
   //! F(v_r) [N] and dF/dv_r [N s/m] together (they share the transcendental calls).
   void force_and_slope(double v_r, double& force_n, double& slope_n_s_per_m) const {
     const ForceAndSlope f = law_->force_and_slope(parameters_, v_r);

@@ -250,19 +250,37 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
           pieces_[piece].kind == PieceKind::quintic ? quintic_hermite_velocity(a, b) : cubic_hermite_velocity(a, b);
       const double h = b.t_s - a.t_s;
       const std::array<double, 5> xc{h * c[0], h * c[1] / 2.0, h * c[2] / 3.0, h * c[3] / 4.0, h * c[4] / 5.0};
+      // Copies of the knot's time and displacement: read through `a`, they would be reloaded
+      // after every store to the output (which could alias them), and the loop below would
+      // not become SIMD pairs.
+      const double t_a = a.t_s, x_a = a.x_m;
       auto at_s = [&](double s_) {
         const double v = c[0] + s_ * (c[1] + s_ * (c[2] + s_ * (c[3] + s_ * c[4])));
-        const double x = a.x_m + s_ * (xc[0] + s_ * (xc[1] + s_ * (xc[2] + s_ * (xc[3] + s_ * xc[4]))));
+        const double x = x_a + s_ * (xc[0] + s_ * (xc[1] + s_ * (xc[2] + s_ * (xc[3] + s_ * xc[4]))));
         return PhasePoint{x, v};
       };
       const double inv_h = 1.0 / h;
+      if (!midpoints) {
+        const double* t = times_s.data();
+        double* x_out = out.x_m.data();
+        double* v_out = out.v_m_per_s.data();
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+        for (std::size_t i = j; i < end; ++i) {
+          const PhasePoint p = at_s((t[i] - t_a) * inv_h);
+          x_out[i] = p.x_m;
+          v_out[i] = p.v_m_per_s;
+        }
+        j = end;
+      }
       for (; j < end; ++j) {
-        const PhasePoint p = at_s((times_s[j] - a.t_s) * inv_h);
+        const PhasePoint p = at_s((times_s[j] - t_a) * inv_h);
         out.x_m[j] = p.x_m;
         out.v_m_per_s[j] = p.v_m_per_s;
         if (midpoints && j + 1 < count) {
           const double t_mid = 0.5 * (times_s[j] + times_s[j + 1]);
-          store_mid(j, t_mid <= piece_end ? at_s((t_mid - a.t_s) / h) : midpoint(j));
+          store_mid(j, t_mid <= piece_end ? at_s((t_mid - t_a) / h) : midpoint(j));
         }
       }
     } else {

@@ -1,6 +1,8 @@
 #pragma once
 //! Model 2 in the integrators' scaled variables (internal to the tribology solvers).
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 #include <Eigen/Core>
 
@@ -31,6 +33,15 @@ class ScaledSystem {
   //! The friction term F(v_b - w0 L w) / (k L) of the acceleration.
   [[nodiscard]] double friction_term(double w) const {
     return force_scale_ * friction_.force(belt_velocity_ - velocity_scale_ * w);
+  }
+
+  //! friction_term at `count` scaled velocities w into `out` (the same values).
+  template <std::size_t N>
+  void friction_terms(const std::array<double, N>& w, std::array<double, N>& out) const {
+    std::array<double, N> v_r;
+    for (std::size_t i = 0; i < N; ++i) v_r[i] = belt_velocity_ - velocity_scale_ * w[i];
+    friction_.forces(v_r.data(), out.data(), N);
+    for (std::size_t i = 0; i < N; ++i) out[i] *= force_scale_;
   }
 
   //! The largest |friction_term| any v_r gives, N max(mu_s, mu_k) / (k L): both forms of
