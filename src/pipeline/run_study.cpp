@@ -225,8 +225,10 @@ RunResult run_study(const Study& study, const RunOptions& options) {
         if (keep.friction) {
           const StribeckFriction friction(study.model2, a.normal_load_n);
           t.friction_n.resize(samples.v_m_per_s.size());
+          // v_r first, then F in place, in one batch (the law's formula inlined in its loop).
           for (std::size_t j = 0; j < t.friction_n.size(); ++j)
-            t.friction_n[j] = friction.force(study.model2.belt_velocity_m_per_s - samples.v_m_per_s[j]);
+            t.friction_n[j] = study.model2.belt_velocity_m_per_s - samples.v_m_per_s[j];
+          friction.forces(t.friction_n.data(), t.friction_n.data(), t.friction_n.size());
         }
         check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
         result.statistics[i] = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
