@@ -147,16 +147,20 @@ struct ProcessRun {
   int exit_status = -1;
   double wall_s = 0.0;
   double cpu_s = 0.0;       //!< user + system, the child and its threads
-  double max_rss_mb = 0.0;  //!< peak resident memory [MiB]
+  double max_rss_mb = 0.0;  //!< peak resident memory [MiB] (0: not measured)
 };
+
+//! Whether run_process measures the child's peak memory too.
+enum class PeakMemory { measured, not_measured };
 
 //! Runs `arguments` (argv[0] is the program) with stdout and stderr to /dev/null. The
 //! peak memory comes from GNU time running it (/usr/bin/time, when present): the kernel
 //! carries a process's peak over exec, so a child started from this (large) process would
-//! report at least this process's own size.
-inline ProcessRun run_process(std::vector<std::string> arguments) {
+//! report at least this process's own size. GNU time's own start and exit then count in
+//! cpu_s (~1.4 ms here): a few-millisecond process is timed with PeakMemory::not_measured.
+inline ProcessRun run_process(std::vector<std::string> arguments, PeakMemory memory = PeakMemory::measured) {
   const fs::path memory_file = fs::temp_directory_path() / ("stengmc_rss_" + std::to_string(::getpid()));
-  const bool timed = fs::exists("/usr/bin/time");
+  const bool timed = memory == PeakMemory::measured && fs::exists("/usr/bin/time");
   if (timed) arguments.insert(arguments.begin(), {"/usr/bin/time", "-f", "%M", "-o", memory_file.string()});
   std::vector<char*> argv;
   for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
