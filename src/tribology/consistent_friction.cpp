@@ -7,8 +7,7 @@ namespace {
 
 template <bool Series>
 double force(const FrictionParameters& p, double v_r) {
-  const double excess = Series ? stribeck::excess_series(p, v_r) : stribeck::excess(p, v_r);
-  const double sign = Series ? stribeck::regularised_sign_far(p, v_r) : stribeck::regularised_sign(p, v_r);
+  const auto [excess, sign] = stribeck::excess_and_sign<Series>(p, v_r);
   return p.normal_load_n * (p.kinetic_coefficient + excess) * sign;
 }
 

@@ -62,6 +62,18 @@ inline double regularised_sign_far(const FrictionParameters& p, double v_r) {
   return TWO_OVER_PI * arctan_far(p.atan_sharpness_s_per_m * v_r);
 }
 
+//! The two pieces every law combines, by the series alone (`Series`: the caller knows v_r
+//! is in their range) or by the general forms.
+struct ExcessAndSign {
+  double excess;
+  double sign;
+};
+template <bool Series>
+inline ExcessAndSign excess_and_sign(const FrictionParameters& p, double v_r) {
+  if constexpr (Series) return {excess_series(p, v_r), regularised_sign_far(p, v_r)};
+  else return {excess(p, v_r), regularised_sign(p, v_r)};
+}
+
 //! FrictionLaw::forces for a law whose force() is `Force`, `SeriesForce` being the same
 //! formula through excess_series and regularised_sign_far: where every v_r of the batch
 //! lies in their range (sliding, where the sliding propagator works), a branch-free loop
