@@ -5,11 +5,11 @@
 #include <sstream>
 #include <utility>
 
-#include <Eigen/Core>
-
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "tribology/oscillator_flow.hpp"
+#include "tribology/oscillator_sampling.hpp"
+#include "tribology/time_grid.hpp"
 
 namespace stengmc {
 
@@ -39,13 +39,6 @@ double locate_sign_change(const Function& r, double sa, double fa, double sb, do
   return 0.5 * (sa + sb);
 }
 
-// Samples of a uniform walk between re-anchorings in closed form: the flow's rounding (a
-// few ulp of the free oscillator's state per multiplication) then stays ~1e-14 of the
-// length scale (measured against at(): 5e-15 of max|x|, 8e-14 of max|x'| for the Table-1
-// cases; 32 points gave 5e-15 and 2e-14, for ~3 us more per 5000 samples in exp and
-// sincos). A propagator piece whose free part is r times larger than the motion (its
-// polynomial part cancels it, sliding_propagator.hpp) re-anchors r times as often.
-constexpr std::size_t REANCHOR_POINTS = 128;
 // Oscillator pieces are probed for v_r sign changes this often per undamped period.
 constexpr double PROBES_PER_PERIOD = 16.0;
 
@@ -181,10 +174,7 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
   // The walk needs a uniform grid (one flow for every half step); anything else is sampled
   // point by point.
   const double step = count >= 2 ? (times_s.back() - times_s.front()) / static_cast<double>(count - 1) : 0.0;
-  // Every spacing checked without an early exit, so the loop vectorises (a NaN fails too).
-  bool uniform = true;
-  for (std::size_t j = 1; j < count; ++j) uniform &= std::abs(times_s[j] - times_s[j - 1] - step) <= 1e-9 * step;
-  if (!uniform) {
+  if (!evenly_spaced(times_s, step)) {
     Motion::sample(times_s, midpoints, out);
     return;
   }
@@ -284,71 +274,23 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
         }
       }
     } else {
-      const MotionPiece& osc = pieces_[piece];
-      const MotionKnot& a = knots_[piece];
-      const double w0_step = w0_ * step;
-      const OscillatorFlow half_step = OscillatorFlow::over(osc.zeta, 0.5 * w0_step);
-      const OscillatorFlow full_step = half_step.doubled();
-      const OscillatorFlow double_step = full_step.doubled();
-      // x_p and x_p' / w0 as one polynomial in tau with coefficient pairs (both at once,
-      // in the two lanes of a SIMD register where there is one), by Estrin's scheme (Knuth,
-      // TAOCP vol. 2, Sec. 4.6.4): three levels of independent multiply-adds where Horner's
-      // rule chains six, so consecutive samples overlap.
-      static_assert(MOTION_PIECE_TERMS == 7, "Estrin's scheme below is written for degree 6");
-      std::array<Eigen::Array2d, MOTION_PIECE_TERMS> pc;
-      for (std::size_t k = 0; k < MOTION_PIECE_TERMS; ++k)
-        pc[k] = {osc.particular_m[k], k + 1 < MOTION_PIECE_TERMS ? static_cast<double>(k + 1) * osc.particular_m[k + 1] : 0.0};
-      auto particular = [&](double tau, double& x, double& v) {
-        const double t2 = tau * tau;
-        const double t4 = t2 * t2;
-        const Eigen::Array2d r = ((pc[0] + pc[1] * tau) + (pc[2] + pc[3] * tau) * t2) + ((pc[4] + pc[5] * tau) + pc[6] * t2) * t4;
-        x = r[0];
-        v = r[1];
-      };
-      double z = 0.0, dz = 0.0;
-      homogeneous_start(a, osc, w0_, z, dz);
-      const double scale = std::abs(a.x_m - osc.centre_m) + std::abs(a.v_m_per_s / w0_);
-      const double cancellation = (std::abs(z) + std::abs(dz)) / std::max(scale, 1e-300);
-      const std::size_t reanchor = cancellation <= 1.0 ? REANCHOR_POINTS
-          : std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(REANCHOR_POINTS) / cancellation));
-      const double centre = osc.centre_m;
-      while (j < end) {
-        // Anchor in closed form, then walk up to `reanchor` samples with the flow.
-        const double tau0 = w0_ * (times_s[j] - a.t_s);
-        homogeneous_start(a, osc, w0_, z, dz);
-        OscillatorFlow::over(osc.zeta, tau0).apply(z, dz);
-        // Two interleaved walks over two sample steps each (the samples k and k + 1 ahead
-        // of them): half the dependent chain of one walk.
-        double z_next = z, dz_next = dz;
-        full_step.apply(z_next, dz_next);
-        const std::size_t block_end = std::min(end, j + reanchor);
-        for (std::size_t k = 0; j < block_end; ++j, ++k) {
-          if (k > 0) {
-            double z_after = z, dz_after = dz;
-            double_step.apply(z_after, dz_after);
-            z = z_next;
-            dz = dz_next;
-            z_next = z_after;
-            dz_next = dz_after;
-          }
-          const double tau = tau0 + static_cast<double>(k) * w0_step;
-          double xp = 0.0, vp = 0.0;
-          particular(tau, xp, vp);
-          out.x_m[j] = centre + z + xp;
-          out.v_m_per_s[j] = w0_ * (dz + vp);
-          if (midpoints && j + 1 < count) {
-            const double t_mid = 0.5 * (times_s[j] + times_s[j + 1]);
-            if (t_mid <= piece_end) {
-              double zm = z, dzm = dz;
-              half_step.apply(zm, dzm);
-              particular(tau + 0.5 * w0_step, xp, vp);
-              store_mid(j, {centre + zm + xp, w0_ * (dzm + vp)});
-            } else {
-              store_mid(j, midpoint(j));
-            }
-          }
-        }
+      // Midpoints up to mid_end lie on this piece; a later one (the last sample's, just
+      // before the piece end) belongs to the next.
+      std::size_t mid_end = midpoints ? end : j;
+      while (mid_end > j && !(mid_end < count && 0.5 * (times_s[mid_end - 1] + times_s[mid_end]) <= piece_end)) --mid_end;
+      static const SamplingLanes lanes = widest_sampling_lanes();
+      OscillatorSamplingTask task{&knots_[piece], &pieces_[piece], w0_, step, times_s.data(), j, end,
+                                  out.x_m.data(), out.v_m_per_s.data()};
+      if (midpoints) {
+        task.mid_x_m = out.mid_x_m.data();
+        task.mid_v_m_per_s = out.mid_v_m_per_s.data();
+        task.mid_end = mid_end;
       }
+      sample_oscillator_piece(task, lanes);
+      if (midpoints) {
+        for (std::size_t i = mid_end; i < end && i + 1 < count; ++i) store_mid(i, midpoint(i));
+      }
+      j = end;
     }
     if (piece + 1 < pieces_.size()) ++piece;
   }

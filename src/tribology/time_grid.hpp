@@ -1,6 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace stengmc {
@@ -26,5 +27,10 @@ struct TimeGrid {
     return t;
   }
 };
+
+//! Whether every spacing of `times_s` is `step_s` to within 1e-9 of it (false for any NaN).
+//! Every spacing is checked, two at a time in SSE2 lanes (as a plain loop, the compiler
+//! left it scalar: ~3 us per 5000 samples, a tenth of sampling one asperity's motion).
+bool evenly_spaced(std::span<const double> times_s, double step_s);
 
 }  // namespace stengmc
