@@ -199,6 +199,7 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
     out.mid_v_m_per_s[j] = p.v_m_per_s;
   };
 
+  const double inverse_step = step > 0.0 ? 1.0 / step : 0.0;
   std::size_t piece = piece_of(times_s.front());
   std::size_t j = 0;
   while (j < count) {
@@ -212,8 +213,10 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
     if (!(piece_end < times_s[count - 1])) {
       end = count;
     } else if (step > 0.0) {
-      const double guess = std::floor((piece_end - times_s[0]) / step) + 1.0;  // <= count here
-      end = std::clamp(guess >= 0.0 ? static_cast<std::size_t>(guess) : 0, j, count);
+      // Truncation is the floor here (the quotient >= 0), and a product does for the
+      // division: the loops below settle the guess either way.
+      const double spacings = (piece_end - times_s[0]) * inverse_step;  // < count - 1 here
+      end = std::clamp(spacings >= 0.0 ? static_cast<std::size_t>(spacings) + 1 : 0, j, count);
       while (end > j && times_s[end - 1] > piece_end) --end;
     }
     while (end < count && times_s[end] <= piece_end) ++end;
