@@ -281,7 +281,6 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
       // before the piece end) belongs to the next.
       std::size_t mid_end = midpoints ? end : j;
       while (mid_end > j && !(mid_end < count && 0.5 * (times_s[mid_end - 1] + times_s[mid_end]) <= piece_end)) --mid_end;
-      static const SamplingLanes lanes = widest_sampling_lanes();
       OscillatorSamplingTask task{&knots_[piece], &pieces_[piece], w0_, step, times_s.data(), j, end,
                                   out.x_m.data(), out.v_m_per_s.data()};
       if (midpoints) {
@@ -289,7 +288,7 @@ void Model2Motion::sample(std::span<const double> times_s, bool midpoints, Motio
         task.mid_v_m_per_s = out.mid_v_m_per_s.data();
         task.mid_end = mid_end;
       }
-      sample_oscillator_piece(task, lanes);
+      sample_oscillator_piece(task, widest_sampling_lanes());
       if (midpoints) {
         for (std::size_t i = mid_end; i < end && i + 1 < count; ++i) store_mid(i, midpoint(i));
       }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/processor_features.hpp"
 #include "tribology/oscillator_flow.hpp"
 
 namespace stengmc {
@@ -162,8 +163,7 @@ void walk_two(const OscillatorSamplingTask& task) { walk<2>(task); }
 
 SamplingLanes widest_sampling_lanes() {
 #ifdef STENGMC_FOUR_LANES
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return SamplingLanes::four;
+  if (processor_has_avx2()) return SamplingLanes::four;
 #endif
   return SamplingLanes::two;
 }

@@ -4,6 +4,7 @@
 //! fifth of its time with std::exp and std::atan).
 #include <cmath>
 
+#include "core/processor_features.hpp"
 #include "tribology/friction_law.hpp"
 
 namespace stengmc::stribeck {
@@ -74,21 +75,51 @@ inline ExcessAndSign excess_and_sign(const FrictionParameters& p, double v_r) {
   else return {excess(p, v_r), regularised_sign(p, v_r)};
 }
 
+//! The branch-free loop of forces_by: `SeriesForce` at each v_r, inlined (so compiled for
+//! whatever target the caller is compiled for).
+template <double (*SeriesForce)(const FrictionParameters&, double)>
+[[gnu::always_inline]] inline void series_forces(const FrictionParameters& p, const double* v_r, double* force_n,
+                                                 std::size_t count) {
+  const FrictionParameters local = p;  // not reloaded after every store (it cannot alias force_n)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep  // force_n may be v_r itself, element for element, never shifted
+#endif
+  for (std::size_t i = 0; i < count; ++i) force_n[i] = SeriesForce(local, v_r[i]);
+}
+
+template <double (*SeriesForce)(const FrictionParameters&, double)>
+void series_forces_baseline(const FrictionParameters& p, const double* v_r, double* force_n, std::size_t count) {
+  series_forces<SeriesForce>(p, v_r, force_n, count);
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define STENGMC_SERIES_FORCES_AVX2 1
+//! The same loop in AVX registers (four lanes). AVX2 alone, not FMA: lane by lane the same
+//! operations as the baseline's SSE2 pairs, so the same bits.
+template <double (*SeriesForce)(const FrictionParameters&, double)>
+[[gnu::target("avx2")]] void series_forces_avx2(const FrictionParameters& p, const double* v_r, double* force_n,
+                                                std::size_t count) {
+  series_forces<SeriesForce>(p, v_r, force_n, count);
+}
+#endif
+
 //! FrictionLaw::forces for a law whose force() is `Force`, `SeriesForce` being the same
 //! formula through excess_series and regularised_sign_far: where every v_r of the batch
 //! lies in their range (sliding, where the sliding propagator works), a branch-free loop
-//! the compiler turns into SIMD pairs (the same operations lane by lane, no FMA: the same
-//! values), else force by force.
+//! the compiler turns into SIMD (SSE2 pairs, or four AVX2 lanes where the processor has
+//! them; no FMA either way: the same values), else force by force.
 template <double (*Force)(const FrictionParameters&, double), double (*SeriesForce)(const FrictionParameters&, double)>
 void forces_by(const FrictionParameters& p, const double* v_r, double* force_n, std::size_t count) {
   bool series = true;
   for (std::size_t i = 0; i < count; ++i) series &= in_series_range(p, v_r[i]);
   if (series) {
-    const FrictionParameters local = p;  // not reloaded after every store (it cannot alias force_n)
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC ivdep  // force_n may be v_r itself, element for element, never shifted
+#ifdef STENGMC_SERIES_FORCES_AVX2
+    if (processor_has_avx2()) {
+      series_forces_avx2<SeriesForce>(p, v_r, force_n, count);
+      return;
+    }
 #endif
-    for (std::size_t i = 0; i < count; ++i) force_n[i] = SeriesForce(local, v_r[i]);
+    series_forces_baseline<SeriesForce>(p, v_r, force_n, count);
   } else {
     for (std::size_t i = 0; i < count; ++i) force_n[i] = Force(p, v_r[i]);
   }

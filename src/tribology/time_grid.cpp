@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/processor_features.hpp"
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
 #define STENGMC_GRID_CHECK_AVX 1
@@ -40,8 +42,7 @@ bool evenly_spaced(std::span<const double> times_s, double step_s) {
 #ifdef STENGMC_GRID_CHECK_AVX
   // Four spacings per compare where the processor has AVX (the plain loop stayed scalar:
   // ~3 us per 5000 samples, a tenth of sampling one asperity's motion).
-  static const bool avx = __builtin_cpu_supports("avx");
-  if (avx) even = spacings_within_avx(t, count, step_s, tolerance, j);
+  if (processor_has_avx()) even = spacings_within_avx(t, count, step_s, tolerance, j);
 #endif
   for (; j < count; ++j) even &= std::abs(t[j] - t[j - 1] - step_s) <= tolerance;
   return even;

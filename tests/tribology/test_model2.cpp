@@ -12,6 +12,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "core/error.hpp"
+#include "core/processor_features.hpp"
 #include "tribology/friction_law.hpp"
 #include "tribology/model2.hpp"
 
@@ -192,7 +193,8 @@ TEST(Model2, FrictionFormsMatchModelDefinition) {
 // on which of the two it calls. Bitwise, for a batch that mixes relative velocities on both
 // sides of the fast atan series' threshold (|s v_r| = 64) and of the Stribeck polynomial's
 // (c_s |v_r| = 1e-3), taken force by force, and for batches all inside both (sliding), taken
-// by the branch-free series in SIMD pairs: odd and even lengths, so that the vector loop's
+// by the branch-free series in SIMD (SSE2 pairs, and AVX2 quadruples where the processor
+// has them: both versions run here): odd and even lengths, so that the vector loop's
 // tail is exercised too. A law whose batch pointed at another formula, or dropped, shifted
 // or reordered an element, fails here.
 TEST(Model2, BatchedFrictionEqualsOneByOne) {
@@ -206,18 +208,22 @@ TEST(Model2, BatchedFrictionEqualsOneByOne) {
       {-2e4, -3.0, -0.0641, -0.0639, -1e-3, 0.0, 2e-4, 0.0639, 0.0641, 1.0, 10.0, 9.9, 11.0, 2e5},
       {-9.99, -3.0, -0.0641, 0.0641, 0.5, 1.0, 9.99},
       {0.07, -0.3, 2.5, -7.0, 0.9, 1.7}};
-  for (const FrictionLaw& law : friction_laws()) {
-    for (const std::vector<double>& v_r : batches) {
-      std::vector<double> batch(v_r.size(), std::numeric_limits<double>::quiet_NaN());
-      law.forces(p, v_r.data(), batch.data(), v_r.size());
-      for (std::size_t i = 0; i < v_r.size(); ++i)
-        EXPECT_EQ(batch[i], law.force(p, v_r[i])) << law.name << ", v_r = " << v_r[i];
-      // In place (solve_model2 writes F over v_r).
-      std::vector<double> in_place = v_r;
-      law.forces(p, in_place.data(), in_place.data(), in_place.size());
-      EXPECT_EQ(in_place, batch) << law.name;
+  for (const bool baseline : {false, true}) {
+    use_baseline_instructions_only(baseline);
+    for (const FrictionLaw& law : friction_laws()) {
+      for (const std::vector<double>& v_r : batches) {
+        std::vector<double> batch(v_r.size(), std::numeric_limits<double>::quiet_NaN());
+        law.forces(p, v_r.data(), batch.data(), v_r.size());
+        for (std::size_t i = 0; i < v_r.size(); ++i)
+          EXPECT_EQ(batch[i], law.force(p, v_r[i])) << law.name << ", v_r = " << v_r[i] << ", baseline " << baseline;
+        // In place (solve_model2 writes F over v_r).
+        std::vector<double> in_place = v_r;
+        law.forces(p, in_place.data(), in_place.data(), in_place.size());
+        EXPECT_EQ(in_place, batch) << law.name;
+      }
     }
   }
+  use_baseline_instructions_only(false);
 }
 
 // The two friction forms coincide where v_r > 0 up to the term N mu_k (1 - (2/pi) atan(s v_r)),

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/processor_features.hpp"
 #include "tribology/model2.hpp"
 #include "tribology/model2_integrator.hpp"
 #include "tribology/oscillator_sampling.hpp"
@@ -161,25 +162,30 @@ TEST(OscillatorSampling, CancellingPiecesStayAccurateRelativeToTheMotion) {
 }
 
 // The grid test behind the walk: every spacing within 1e-9 of the step, whichever lane
-// or tail position a bad one falls on, and a NaN anywhere fails it.
+// or tail position a bad one falls on, and a NaN anywhere fails it; in its AVX and its
+// scalar version.
 TEST(EvenlySpaced, EverySpacingIsCheckedAndNaNFails) {
   const double step = 1e-8;
-  for (std::size_t count = 0; count <= 11; ++count) {
-    std::vector<double> t(count);
-    for (std::size_t j = 0; j < count; ++j) t[j] = static_cast<double>(j) * step;
-    EXPECT_TRUE(evenly_spaced(t, step)) << count;
-    for (std::size_t bad = 1; bad < count; ++bad) {
-      std::vector<double> shifted = t;
-      shifted[bad] += 1e-6 * step;  // far above 1e-9 of the step
-      EXPECT_FALSE(evenly_spaced(shifted, step)) << count << " " << bad;
-      std::vector<double> nan = t;
-      nan[bad] = std::numeric_limits<double>::quiet_NaN();
-      EXPECT_FALSE(evenly_spaced(nan, step)) << count << " " << bad;
-      std::vector<double> slight = t;
-      slight[bad] += 1e-10 * step;  // within tolerance
-      EXPECT_TRUE(evenly_spaced(slight, step)) << count << " " << bad;
+  for (const bool baseline : {false, true}) {
+    use_baseline_instructions_only(baseline);
+    for (std::size_t count = 0; count <= 11; ++count) {
+      std::vector<double> t(count);
+      for (std::size_t j = 0; j < count; ++j) t[j] = static_cast<double>(j) * step;
+      EXPECT_TRUE(evenly_spaced(t, step)) << count;
+      for (std::size_t bad = 1; bad < count; ++bad) {
+        std::vector<double> shifted = t;
+        shifted[bad] += 1e-6 * step;  // far above 1e-9 of the step
+        EXPECT_FALSE(evenly_spaced(shifted, step)) << count << " " << bad;
+        std::vector<double> nan = t;
+        nan[bad] = std::numeric_limits<double>::quiet_NaN();
+        EXPECT_FALSE(evenly_spaced(nan, step)) << count << " " << bad;
+        std::vector<double> slight = t;
+        slight[bad] += 1e-10 * step;  // within tolerance
+        EXPECT_TRUE(evenly_spaced(slight, step)) << count << " " << bad;
+      }
     }
   }
+  use_baseline_instructions_only(false);
 }
 
 }  // namespace
