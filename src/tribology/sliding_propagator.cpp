@@ -163,16 +163,6 @@ class Collocation {
 
 }  // namespace
 
-double error_norm(const Vec2& err, const Vec2& y0, const Vec2& y1, double tol) {
-  double sum = 0.0;
-  for (int i = 0; i < 2; ++i) {
-    const double sk = tol + tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-    const double r = err[i] / sk;
-    sum += r * r;
-  }
-  return std::sqrt(0.5 * sum);
-}
-
 PropagatorStep propagator_step(const ScaledSystem& sys, const Vec2& y, const Vec2& f, const Mat2& jac, double h,
                                double tol) {
   Collocation step(sys, y, f, jac, h);
