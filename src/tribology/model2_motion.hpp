@@ -42,9 +42,9 @@ class Model2Motion final : public Motion {
   [[nodiscard]] double displacement_bound() const override;
 
   //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
-  //! multiplication with its flow over one sample step (re-anchored in closed form
-  //! every 128 points, so rounding cannot drift: ~1e-14 relative), a few multiplications
-  //! per sample instead of an exponential and a sine.
+  //! multiplication with its flow (sample_oscillator_piece: four interleaved walks,
+  //! re-anchored in closed form every 128 points, so rounding cannot drift: ~1e-14
+  //! relative), a few multiplications per sample instead of an exponential and a sine.
   void sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const override;
 
   //! Sign changes of v_r = v_b - x' (overtake: to negative, regrip: to positive), located
