@@ -61,10 +61,28 @@ template <int Lanes, class V>
   for (std::size_t i = 0; i < valid; ++i) out[i] = value[i];
 }
 
+//! x = centre + z_h + x_p and x' = w0 (z_h' / w0 + x_p' / w0) at the lanes' tau, stored
+//! to x_out, v_out (lanes [0, valid)); x_p and x_p' / w0 by Estrin's scheme (Knuth, TAOCP
+//! vol. 2, Sec. 4.6.4: three levels of independent multiply-adds where Horner's rule
+//! chains six). Vectors by reference, inlined: a by-value AVX vector would cross a non-AVX
+//! call.
+template <int Lanes, class V>
+[[gnu::always_inline]] inline void store_state(const std::array<double, MOTION_PIECE_TERMS>& px,
+                                               const std::array<double, MOTION_PIECE_TERMS - 1>& pv, double centre,
+                                               double w0, const V& z, const V& dz, const V& tau, double* x_out,
+                                               double* v_out, std::size_t valid) {
+  const V t2 = tau * tau;
+  const V t4 = t2 * t2;
+  const V xp = ((px[0] + px[1] * tau) + (px[2] + px[3] * tau) * t2) + ((px[4] + px[5] * tau) + px[6] * t2) * t4;
+  const V vp = ((pv[0] + pv[1] * tau) + (pv[2] + pv[3] * tau) * t2) + (pv[4] + pv[5] * tau) * t4;
+  store<Lanes>(x_out, (centre + z) + xp, valid);
+  store<Lanes>(v_out, w0 * (dz + vp), valid);
+}
+
 //! The walk for a width of `Lanes` samples (2 or 4): WALKS / Lanes vectors per pass, each
-//! lane doing exactly what a one-lane walk would. The Estrin polynomials and the flow are
-//! written out, not lambdas: a lambda would not inherit walk_four's target and would pass
-//! AVX vectors through a non-AVX call.
+//! lane doing exactly what a one-lane walk would. Helpers are always_inline functions, not
+//! lambdas: a lambda would not inherit walk_four's target and would pass AVX vectors
+//! through a non-AVX call.
 template <int Lanes>
 [[gnu::always_inline]] inline void walk(const OscillatorSamplingTask& task) {
   using V = typename LaneVector<Lanes>::type;
@@ -78,9 +96,7 @@ template <int Lanes>
   const OscillatorFlow full_step = half_step.doubled();
   const OscillatorFlow double_step = full_step.doubled();
   const OscillatorFlow walk_step = double_step.doubled();  // over WALKS spacings
-  // x_p and x_p' / w0 as polynomials in tau, by Estrin's scheme (Knuth, TAOCP vol. 2,
-  // Sec. 4.6.4): three levels of independent multiply-adds where Horner's rule chains six.
-  // x_p' / w0 is one degree lower: pv has a term fewer.
+  // x_p and x_p' / w0 as polynomials in tau (x_p' / w0 one degree lower: a term fewer).
   std::array<double, MOTION_PIECE_TERMS> px{};
   std::array<double, MOTION_PIECE_TERMS - 1> pv{};
   for (std::size_t k = 0; k < MOTION_PIECE_TERMS; ++k) px[k] = osc.particular_m[k];
@@ -127,22 +143,13 @@ template <int Lanes>
         const std::size_t at = j + g * Lanes;
         if (at >= block_end) break;
         const V tau = tau0 + (static_cast<double>(k) + offsets[g]) * w0_step;
-        const V t2 = tau * tau;
-        const V t4 = t2 * t2;
-        const V xp = ((px[0] + px[1] * tau) + (px[2] + px[3] * tau) * t2) + ((px[4] + px[5] * tau) + px[6] * t2) * t4;
-        const V vp = ((pv[0] + pv[1] * tau) + (pv[2] + pv[3] * tau) * t2) + (pv[4] + pv[5] * tau) * t4;
-        store<Lanes>(task.x_m + at, (centre + zg) + xp, block_end - at);
-        store<Lanes>(task.v_m_per_s + at, w0 * (dzg + vp), block_end - at);
+        store_state<Lanes>(px, pv, centre, w0, zg, dzg, tau, task.x_m + at, task.v_m_per_s + at, block_end - at);
         if (midpoints && at < mid_block_end) {
           const V zm = half_step.m00 * zg + half_step.m01 * dzg;
           const V dzm = half_step.m10 * zg + half_step.m11 * dzg;
           const V tm = tau + 0.5 * w0_step;
-          const V tm2 = tm * tm;
-          const V tm4 = tm2 * tm2;
-          const V xm = ((px[0] + px[1] * tm) + (px[2] + px[3] * tm) * tm2) + ((px[4] + px[5] * tm) + px[6] * tm2) * tm4;
-          const V vm = ((pv[0] + pv[1] * tm) + (pv[2] + pv[3] * tm) * tm2) + (pv[4] + pv[5] * tm) * tm4;
-          store<Lanes>(task.mid_x_m + at, (centre + zm) + xm, mid_block_end - at);
-          store<Lanes>(task.mid_v_m_per_s + at, w0 * (dzm + vm), mid_block_end - at);
+          store_state<Lanes>(px, pv, centre, w0, zm, dzm, tm, task.mid_x_m + at, task.mid_v_m_per_s + at,
+                             mid_block_end - at);
         }
       }
     }
