@@ -67,6 +67,13 @@ struct MotionPiece {
   std::array<double, MOTION_PIECE_TERMS> particular_m{};  //!< x_p's coefficients [m]
 };
 
+//! The free oscillator's state at the start of an oscillator piece that begins at knot
+//! `start`: (x_h, x_h' / w0) = (x - centre - x_p, x' / w0 - x_p' / w0) at tau = 0 [m].
+inline void free_oscillator_start(const MotionKnot& start, const MotionPiece& piece, double w0, double& z, double& dz) {
+  z = start.x_m - piece.centre_m - piece.particular_m[0];
+  dz = start.v_m_per_s / w0 - piece.particular_m[1];
+}
+
 //! What integrate_model2 returns.
 struct Model2Integration {
   std::vector<MotionKnot> knots;   //!< t = 0, then the end of every accepted step, up to t_end

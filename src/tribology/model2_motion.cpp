@@ -52,12 +52,6 @@ void particular_at(const MotionPiece& piece, double tau, double& x, double& dx) 
   for (std::size_t j = top; j-- > 1;) dx = dx * tau + static_cast<double>(j) * a[j];
 }
 
-//! The free oscillator's state at the piece start, (x_h, x_h' / w0) [m].
-void homogeneous_start(const MotionKnot& a, const MotionPiece& piece, double w0, double& z, double& dz) {
-  z = a.x_m - piece.centre_m - piece.particular_m[0];
-  dz = a.v_m_per_s / w0 - piece.particular_m[1];
-}
-
 }  // namespace
 
 Model2Motion::Model2Motion(Model2Integration integration)
@@ -101,7 +95,7 @@ PhasePoint Model2Motion::on_piece(std::size_t i, double t_s) const {
   if (piece.kind == PieceKind::cubic) return cubic_hermite(a, knots_[i + 1], t_s);
   const double tau = w0_ * (t_s - a.t_s);
   double z = 0.0, dz = 0.0, zp = 0.0, dzp = 0.0;
-  homogeneous_start(a, piece, w0_, z, dz);
+  free_oscillator_start(a, piece, w0_, z, dz);
   OscillatorFlow::over(piece.zeta, tau).apply(z, dz);
   particular_at(piece, tau, zp, dzp);
   return {piece.centre_m + z + zp, w0_ * (dz + dzp)};
@@ -335,7 +329,7 @@ std::vector<Event> Model2Motion::relative_velocity_events(double belt_velocity) 
     // by its coefficients' magnitudes at the piece end.
     const MotionPiece& osc = pieces_[i];
     double z0 = 0.0, dz0 = 0.0;
-    homogeneous_start(a, osc, w0_, z0, dz0);
+    free_oscillator_start(a, osc, w0_, z0, dz0);
     const double growth = osc.zeta >= 0.0 ? 1.0 : std::exp(2.0 * -osc.zeta * w0_ * h);
     const double tau_end = w0_ * h;
     double particular_bound = 0.0, power = 1.0;

@@ -33,17 +33,11 @@ struct LaneVector {
   typedef double type __attribute__((vector_size(8 * Lanes)));
 };
 
-//! The (x_h, x_h' / w0) of the piece's free oscillator at its start [m].
-void free_start(const OscillatorSamplingTask& task, double& z, double& dz) {
-  z = task.start->x_m - task.piece->centre_m - task.piece->particular_m[0];
-  dz = task.start->v_m_per_s / task.w0_rad_per_s - task.piece->particular_m[1];
-}
-
 //! Samples between closed-form anchors: where the free part is r times the motion's
 //! scale, its rounding is too, so the walk re-anchors r times as often.
 std::size_t reanchor_points(const OscillatorSamplingTask& task) {
   double z = 0.0, dz = 0.0;
-  free_start(task, z, dz);
+  free_oscillator_start(*task.start, *task.piece, task.w0_rad_per_s, z, dz);
   const double scale =
       std::abs(task.start->x_m - task.piece->centre_m) + std::abs(task.start->v_m_per_s / task.w0_rad_per_s);
   const double cancellation = (std::abs(z) + std::abs(dz)) / std::max(scale, 1e-300);
@@ -112,7 +106,7 @@ template <int Lanes>
     // Anchor in closed form; samples 1, 2, 3 of the block one, two and three spacings on.
     const double tau0 = w0 * (task.times_s[j] - a.t_s);
     std::array<double, WALKS> z0{}, dz0{};
-    free_start(task, z0[0], dz0[0]);
+    free_oscillator_start(a, osc, w0, z0[0], dz0[0]);
     OscillatorFlow::over(osc.zeta, tau0).apply(z0[0], dz0[0]);
     z0[1] = z0[0];
     dz0[1] = dz0[0];
