@@ -1,8 +1,6 @@
 #include "circuit/netlist_key.hpp"
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 
 #include "circuit/netlist_load.hpp"
@@ -18,14 +16,14 @@ std::shared_ptr<const NetlistLoad> read_netlist_key(TomlTable& circuit, const st
                                   " (the netlist describes the whole load)");
   const std::string name = circuit.string("netlist", "");
   if (name.empty()) circuit.fail("netlist", "is empty: give the path of a SPICE netlist of the load");
-  const std::filesystem::path study_dir = std::filesystem::path(study_file).parent_path();
+  // A study reads its netlist, and what that includes, from its own folder only: a study
+  // someone shared must not make stengmc read (and record in its outputs) other files.
+  std::filesystem::path study_dir = std::filesystem::path(study_file).parent_path();
+  if (study_dir.empty()) study_dir = ".";
   const std::filesystem::path path =
       (std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : study_dir / name).lexically_normal();
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path))
-    circuit.fail("netlist", "= \"" + name + "\": cannot read it (looked for " + path.string() + ")");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return std::make_shared<const NetlistLoad>(parse_netlist_load(text, path.string()));
+  return std::make_shared<const NetlistLoad>(read_netlist_load(
+      path.string(), study_dir.string(), circuit.location("netlist") + ": " + circuit.qualified("netlist") + " = \"" + name + "\""));
 }
 
 }  // namespace stengmc

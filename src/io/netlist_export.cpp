@@ -75,7 +75,8 @@ std::string export_netlist_text(const Study& study, const RunResult& result) {
   out << "\n";
   for (const std::string& card : steng_port_cards(std::string(STENG_PORT_NODE))) out << card << "\n";
   if (study.netlist) {
-    out << "* The load: " << study.netlist->file << " (the study's [circuit] netlist), verbatim:\n";
+    out << "* The load: " << study.netlist->file << " (the study's [circuit] netlist), as stengmc checked it: its\n"
+        << "* cards without comments, continuation lines joined, included files inlined\n";
     for (const std::string& line : study.netlist->lines) out << line << "\n";
   } else {
     out << "* The load: the study's R || C_L\n"

@@ -72,6 +72,9 @@ void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const Netl
   if (!netlist) return;
   file.attribute("/", "netlist_file", netlist->file);
   file.attribute("/", "netlist_text", netlist->text);
+  // What ngspice was given: the checked cards, included files inlined (the record is
+  // complete without them).
+  file.attribute("/", "netlist_cards", netlist_cards_text(*netlist));
 }
 
 void write_elements(Hdf5Writer& file, std::span<const StengElement> elements) {

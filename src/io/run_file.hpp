@@ -29,8 +29,8 @@ struct Provenance {
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance);
 
-//! The root attributes netlist_file and netlist_text: a study's `[circuit] netlist`,
-//! recorded beside its text (nothing when it has none).
+//! The root attributes netlist_file, netlist_text and netlist_cards: a study's `[circuit]
+//! netlist`, verbatim and as ngspice ran it (nothing when it has none).
 void write_netlist_provenance(Hdf5Writer& file, const std::shared_ptr<const NetlistLoad>& netlist);
 
 //! /asperity/{sigma,d0,w,l}: the element parameters.
