@@ -59,9 +59,20 @@ void check_finite(const std::vector<double>& values, std::span<const double> tim
 
 }  // namespace
 
+double netlist_circuit_devices(std::size_t elements, const NetlistLoad& load) {
+  // Per element: its sources (every card but the instance) and the subcircuit's devices
+  // (every card but .subckt, .param and .ends); one sense source at the port.
+  const double per_element = static_cast<double>(steng_element_cards(0, StengElement{}, "0").size() - 1 +
+                                                  steng_subcircuit_cards(EPSILON_0).size() - 3);
+  return per_element * static_cast<double>(elements) + 1.0 + load.devices;
+}
+
+double netlist_circuit_steps(double samples) { return 2.0 * 10.0 * std::max(samples - 1.0, 1.0) + 100.0; }
+
 NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, std::span<const Motion* const> motions,
                                         std::span<const double> times, const NetlistLoad& load, bool element_traces,
-                                        const std::vector<std::string>& extra_vectors) {
+                                        const std::vector<std::string>& extra_vectors, const ChildBudget& budget,
+                                        bool show_progress) {
   NetlistCircuitRun run;
   if (times.size() < 2) {  // nothing to integrate: the initial state, V = Q = 0
     run.circuit.voltage_v.assign(times.size(), 0.0);
@@ -95,6 +106,8 @@ NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, 
   NgspiceTransient transient;
   transient.origin = load.file;
   transient.stop_time_s = duration;
+  transient.budget = budget;
+  transient.show_progress = show_progress;
   transient.cards.push_back("* stengmc: S-TENG elements on the load " + load.file);
   for (std::string& card : steng_subcircuit_cards(EPSILON_0)) transient.cards.push_back(std::move(card));
   for (std::size_t i = 0; i < elements.size(); ++i)
@@ -103,7 +116,7 @@ NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, 
   transient.card_origins.assign(transient.cards.size(), "");
   for (std::size_t k = 0; k < load.lines.size(); ++k) {
     transient.cards.push_back(load.lines[k]);
-    transient.card_origins.push_back(k < load.line_numbers.size() ? load.file + ":" + std::to_string(load.line_numbers[k]) : load.file);
+    transient.card_origins.push_back(k < load.origins.size() ? load.origins[k] : load.file);
   }
   for (std::string& card : transient_cards(run.settings)) transient.cards.push_back(std::move(card));
   transient.cards.push_back(".end");

@@ -23,11 +23,21 @@ struct NetlistCircuitRun {
 //! Runs the elements driven by their motions, in parallel between the port node
 //! (STENG_PORT_NODE) and ground, on `load`, from times.front() to times.back(), and
 //! resamples onto `times`. With `element_traces` also every element's current and its
-//! delivered charge Q_i(t) - Q_i(t0) (Q_i = sigma w x - C_i V, exact given V).
-//! @throws InputError naming the netlist file when ngspice rejects it or its run fails
+//! delivered charge Q_i(t) - Q_i(t0) (Q_i = sigma w x - C_i V, exact given V). ngspice runs
+//! in a child process under `budget` (circuit/ngspice_library.hpp).
+//! @throws InputError naming the netlist file when ngspice rejects it, its run fails, it
+//!         crashes or it exceeds the budget
 //! @throws ModelError when a result is not finite
 NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, std::span<const Motion* const> motions,
                                         std::span<const double> times, const NetlistLoad& load, bool element_traces,
-                                        const std::vector<std::string>& extra_vectors = {});
+                                        const std::vector<std::string>& extra_vectors = {},
+                                        const ChildBudget& budget = {}, bool show_progress = false);
+
+//! Devices ngspice builds for `elements` S-TENG elements on `load` (the work estimate's count).
+double netlist_circuit_devices(std::size_t elements, const NetlistLoad& load);
+
+//! ngspice's time steps for a run of `samples` output samples: at most a tenth of the sample
+//! step each (steng_netlist.hpp), doubled for rejected steps and breakpoints.
+double netlist_circuit_steps(double samples);
 
 }  // namespace stengmc

@@ -283,7 +283,8 @@ RunResult run_study(const Study& study, const RunOptions& options) {
       elements.push_back(study.asperities[i].element);
     }
     result.circuit = solve_netlist_circuit(elements, inputs, times.first(result.circuit_samples), *study.netlist,
-                                           keep.circuit_samples)
+                                           keep.circuit_samples, {}, ngspice_budget(study, options.limits),
+                                           options.show_progress)
                          .circuit;
   } else {
     std::optional<Progress> progress;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "circuit/netlist_circuit.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -142,6 +143,36 @@ double summits_upper_bound(const RandomSurface& surface) {
   return surface.count_rule == CountRule::poisson ? mean + 6.0 * std::sqrt(mean) : mean;
 }
 
+namespace {
+
+//! ngspice on the netlist: every device at every time step, every vector at every step.
+void add_ngspice(const NetlistLoad& load, double n, double samples, WorkEstimate& e) {
+  const double devices = netlist_circuit_devices(static_cast<std::size_t>(n), load);
+  const double steps = netlist_circuit_steps(samples);
+  e.add_steps("circuit (ngspice): " + count(devices) + " devices x " + count(steps) + " time steps",
+              devices * steps * NGSPICE_STEPS_PER_DEVICE_STEP);
+  e.add_memory("circuit (ngspice): " + count(devices) + " devices", devices * NGSPICE_BYTES_PER_DEVICE);
+  const double vectors = 3.0 + n;  // time, V, the port current and, at most, each element's current
+  e.add_memory("circuit (ngspice): " + count(vectors) + " vectors x " + count(steps) + " time steps",
+               vectors * steps * NGSPICE_BYTES_PER_VALUE);
+}
+
+}  // namespace
+
+ChildBudget ngspice_budget(const Study& study, const WorkLimits& limits) {
+  ChildBudget budget;
+  budget.memory_bytes = limits.memory_bytes;
+  double steps = 0.0;
+  if (study.netlist) {
+    const double samples = std::round(study.duration_s * study.sample_rate_hz) + 1.0;
+    steps = netlist_circuit_devices(study.asperities.size(), *study.netlist) * netlist_circuit_steps(samples) *
+            NGSPICE_STEPS_PER_DEVICE_STEP;
+  }
+  budget.cpu_seconds = std::max(NGSPICE_MIN_CPU_SECONDS, NGSPICE_TIME_SAFETY * steps * 1e-7);
+  budget.wall_seconds = 3.0 * budget.cpu_seconds + 60.0;
+  return budget;
+}
+
 WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file) {
   WorkEstimate e;
   const bool known = asperities < 0.0;
@@ -157,10 +188,14 @@ WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run
                      " samples",
                  (traces_written(study) * n + 3.0) * samples * FILE_BYTES_PER_VALUE);
   add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), e);
-  e.add_steps("circuit (Radau IIA): " + count(n) + " elements x " + count(samples) + " samples x " +
-                  std::to_string(study.circuit.substeps) + " substeps",
-              n * std::max(samples - 1.0, 0.0) * static_cast<double>(study.circuit.substeps) * CIRCUIT_STAGES +
-                  n * samples);  // and the domain check
+  if (study.netlist) {
+    add_ngspice(*study.netlist, n, samples, e);
+  } else {
+    e.add_steps("circuit (Radau IIA): " + count(n) + " elements x " + count(samples) + " samples x " +
+                    std::to_string(study.circuit.substeps) + " substeps",
+                n * std::max(samples - 1.0, 0.0) * static_cast<double>(study.circuit.substeps) * CIRCUIT_STAGES +
+                    n * samples);  // and the domain check
+  }
   if (study.spectrum) add_spectra(samples, n, *study.spectrum, e);
   if (const RandomSurface* surface = study.surface->random_surface()) add_sampling(*surface, 1.0, e);
   return e;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/child_process.hpp"
 #include "pipeline/study.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "surface/random_surface.hpp"
@@ -61,6 +62,18 @@ inline constexpr double ESPRIT_BYTES_PER_SAMPLE_LINE = 48;
 inline constexpr double FFT_BYTES_PER_POINT = 16;
 //! The program itself, its libraries and small tables [bytes].
 inline constexpr double BASE_BYTES = 64e6;
+//! ngspice (a `[circuit] netlist` load): solver steps per device and time step, in the
+//! ~100 ns units of WorkLimits::steps (measured: 52 ns per device and step for 20 000
+//! resistors); memory per device for its matrix and instance (measured: ~2.5 kB) [bytes];
+//! and per value of the vectors it keeps (time, V, the port current, each element's
+//! current when traces are kept) at every accepted step [bytes].
+inline constexpr double NGSPICE_STEPS_PER_DEVICE_STEP = 1.0;
+inline constexpr double NGSPICE_BYTES_PER_DEVICE = 4096;
+inline constexpr double NGSPICE_BYTES_PER_VALUE = 8.0;
+//! What the ngspice child may spend beyond its estimate, for the estimate's error: CPU time
+//! as a factor on the estimate's steps at ~100 ns each, with a floor [s].
+inline constexpr double NGSPICE_TIME_SAFETY = 20.0;
+inline constexpr double NGSPICE_MIN_CPU_SECONDS = 60.0;
 
 // ---------------------------------------------------------------- limits
 
@@ -111,6 +124,10 @@ WorkEstimate estimate_surface(const RandomSurface& surface, double realisations)
 //! Summits one realisation draws at most (almost surely): the mean, or for a Poisson count
 //! the mean plus 6 standard deviations.
 double summits_upper_bound(const RandomSurface& surface);
+
+//! The budget of the ngspice child of `study`'s run (a `[circuit] netlist` load): the
+//! memory limit, and CPU time from the estimate of its steps (circuit/ngspice_library.hpp).
+ChildBudget ngspice_budget(const Study& study, const WorkLimits& limits);
 
 //! "" when `estimate` is within `limits`; else what exceeds: the quantity, its estimate,
 //! the limit, the factor, the largest contribution and how to raise the limit.

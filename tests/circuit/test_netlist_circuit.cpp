@@ -124,8 +124,7 @@ TEST(NetlistCircuit, BridgeRectifierEnergyBalanceCloses) {
     elements.push_back(study.asperities[i].element);
   }
   // The same netlist, asked for the diode currents as well.
-  NetlistLoad load = *study.netlist;
-  load.lines.push_back(".save all @d1[id] @d2[id] @d3[id] @d4[id]");
+  const NetlistLoad& load = *study.netlist;
   const NetlistCircuitRun spice = solve_netlist_circuit(elements, motions, run.times_s, load, false,
                                                         {"v(vplus)", "v(vminus)", "@d1[id]", "@d2[id]", "@d3[id]", "@d4[id]"});
   // The run through the pipeline saw the same circuit.
