@@ -1,9 +1,11 @@
 // A deterministic mutation fuzzer of the readers a user's files go through (README:
 // "Rejected inputs and faults"): study files (read, estimated and run within tight
 // limits), surface files (read and sampled), CSV files (displacements, signals,
-// histograms) and HDF5 files (run files read by `circuit`, `spectrum` and `plot`).
+// histograms), HDF5 files (run files read by `circuit`, `spectrum` and `plot`) and load
+// netlists (`[circuit] netlist`: read, checked against the policy, includes inlined; every
+// 50th accepted one also run by ngspice in its child process).
 //
-//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5
+//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5 | netlist
 //
 // Each execution takes a valid seed input (the repository's studies and surfaces, CSV and
 // HDF5 files made here), mutates it with a generator seeded by (SEED, execution) — bit
@@ -20,6 +22,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -31,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include "circuit/netlist_load.hpp"
+#include "circuit/ngspice_library.hpp"
 #include "core/error.hpp"
 #include "io/displacement_input.hpp"
 #include "core/hdf5_file.hpp"
@@ -231,6 +236,18 @@ Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::p
   } else if (reader == "hdf5") {
     c.inputs = hdf5_seeds(scratch);
     c.text = false;
+  } else if (reader == "netlist") {
+    for (const char* name : {"bridge_rectifier.cir", "resistor_1meg.cir"})
+      c.inputs.push_back(read_file(source / "studies/circuits" / name));
+    // Every construct the policy knows, accepted and refused, for mutations to cross.
+    c.inputs.push_back(
+        "* rich load\n.param r0=1e6 c0={1p*2}\n.func half(x) {x/2}\n.subckt rc p n params: r=1k\nR1 p m {r}\n"
+        "C1 m n 1p ; comment\n+ ic=0\n.ends rc\nX1 steng 0 rc params: r={half(r0)}\n.include parts.cir\n"
+        ".lib models.lib fast\nD1 steng 0 dfast\nB1 steng 0 I=v(steng)/1e9 $ behavioural\n.end\n");
+    c.inputs.push_back("* refused\nRload steng 0 1e6\n.control\nshell touch ran-this\n.endc\n*#echo\n"
+                       "A1 %v(steng) f\n.model f filesource(file=\"/dev/zero\")\n.options reltol=1\n");
+    write_file(scratch / "parts.cir", "Rpart steng 0 1e9\n");
+    write_file(scratch / "models.lib", ".lib fast\n.model dfast d(is=1e-15 rs=10 cjo=0)\n.endl\n");
   }
   return c;
 }
@@ -297,11 +314,47 @@ void read_hdf5_input(const fs::path& file, std::size_t execution) {
   }
 }
 
+//! Reads a netlist as a study would (inside the scratch folder, includes and all), checks
+//! what the policy let through, and runs every 50th accepted one in ngspice's child: a 1 us
+//! transient with the port driven through 1 kOhm.
+void read_netlist_input(const fs::path& file, std::size_t& accepted_so_far) {
+  const NetlistLoad load = read_netlist_load(file.string(), file.parent_path().string(), "fuzz");
+  for (const std::string& card : load.lines) {
+    // Independent of the policy's code: what ngspice would run or read never reaches it.
+    const std::string head = card.substr(0, card.find_first_of(" \t"));
+    std::string lower(head);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool dot_card_allowed = lower == ".model" || lower == ".subckt" || lower == ".ends" || lower == ".param" ||
+                                  lower == ".func";
+    if (lower.empty() || (lower[0] == '.' && !dot_card_allowed) || lower[0] == 'a' || lower[0] == 'n' ||
+        lower[0] == '*' || lower[0] == '+' || (!std::isalpha(static_cast<unsigned char>(lower[0])) && lower[0] != '.'))
+      throw Finding{"the policy let through the card '" + card.substr(0, 80) + "'"};
+    if (lower == ".model" && (card.find("filesource") != std::string::npos || card.find("d_source") != std::string::npos))
+      throw Finding{"the policy let through a file-reading model"};
+    for (const char c : card)
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t') throw Finding{"a control character in an accepted card"};
+  }
+  if (!ngspice_library_available() || accepted_so_far++ % 50 != 0) return;
+  NgspiceTransient transient;
+  transient.cards = {"* fuzz", "Vfuzz fuzz_drive 0 sin(0 1 1e6)", "Rfuzz fuzz_drive steng 1k"};
+  transient.cards.insert(transient.cards.end(), load.lines.begin(), load.lines.end());
+  transient.cards.insert(transient.cards.end(), {".tran 1n 1u", ".end"});
+  transient.origin = file.string();
+  transient.stop_time_s = 1e-6;
+  transient.vectors = {"v(steng)"};
+  transient.external_voltage = [](std::string_view, double) { return 0.0; };
+  transient.budget.cpu_seconds = 10.0;
+  transient.budget.wall_seconds = 30.0;
+  transient.budget.memory_bytes = 0.5e9;
+  const NgspiceVectors result = run_ngspice_transient(transient);
+  require_finite(result.time_s, "ngspice's times");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5 RUNS [SEED]\n");
+    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5|netlist RUNS [SEED]\n");
     return 2;
   }
   const std::string reader = argv[1];
@@ -317,12 +370,12 @@ int main(int argc, char** argv) {
 
   const Corpus corpus = corpus_for(reader, source, scratch);
   if (corpus.inputs.empty()) {
-    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5)\n", reader.c_str());
+    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5, netlist)\n", reader.c_str());
     return 2;
   }
-  const std::string extension = reader == "hdf5" ? ".h5" : reader == "csv" ? ".csv" : ".toml";
+  const std::string extension = reader == "hdf5" ? ".h5" : reader == "csv" ? ".csv" : reader == "netlist" ? ".cir" : ".toml";
   const fs::path input = scratch / ("input" + extension);
-  std::size_t accepted = 0, refused = 0, model_errors = 0, found = 0;
+  std::size_t accepted = 0, refused = 0, model_errors = 0, found = 0, netlists_accepted = 0;
   for (std::size_t i = 0; i < runs; ++i) {
     std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + i);
     const std::string& base = corpus.inputs[rng() % corpus.inputs.size()];
@@ -339,6 +392,7 @@ int main(int argc, char** argv) {
       if (reader == "study") read_study_input(input);
       else if (reader == "surface") read_surface_input(input);
       else if (reader == "csv") read_csv_input(input, i);
+      else if (reader == "netlist") read_netlist_input(input, netlists_accepted);
       else read_hdf5_input(input, i);
       ++accepted;
     } catch (const InputError&) {
