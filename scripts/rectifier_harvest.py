@@ -14,6 +14,7 @@ Needs Debian's python3 with python3-h5py, python3-matplotlib, python3-numpy.
 """
 import argparse
 import os
+import shutil
 import subprocess
 
 import h5py
@@ -64,7 +65,11 @@ def main():
     parser.add_argument("--out", default=os.path.join("results", "circuits", "harvest"))
     args = parser.parse_args()
     os.makedirs(os.path.dirname(args.out) or ".", exist_ok=True)
-    netlist = os.path.join(SOURCE_DIR, "studies", "circuits", "bridge_rectifier.cir")
+    # A study reads its netlist from its own folder only (docs/faults.md, "Netlists are
+    # data"): the rectifier's netlist is copied beside the studies written here.
+    netlist = os.path.basename(args.out) + "_bridge_rectifier.cir"
+    shutil.copyfile(os.path.join(SOURCE_DIR, "studies", "circuits", "bridge_rectifier.cir"),
+                    os.path.join(os.path.dirname(args.out) or ".", netlist))
     rows = []
     for count in args.counts:
         study = f"{args.out}_n{count}.toml"
