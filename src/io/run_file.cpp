@@ -152,6 +152,10 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
     file.write("/circuit/measured_voltage", result.measured_voltage_v);
     file.attribute("/circuit/measured_voltage", "noise_sigma_v", result.noise_sigma_v);
     file.attribute("/circuit/measured_voltage", "snr_db", study.noise->snr_db);
+    file.attribute("/circuit/measured_voltage", "coloured_share", study.noise->coloured_share);
+    file.attribute("/circuit/measured_voltage", "coloured_exponent", study.noise->coloured_exponent);
+    file.attribute("/circuit/measured_voltage", "offset_v", study.noise->offset_v);
+    file.attribute("/circuit/measured_voltage", "bandwidth_hz", study.noise->bandwidth_hz);
   }
   file.attribute("/circuit", "input", CIRCUIT_INPUT_NAMES.name(study.circuit_input));
   file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);

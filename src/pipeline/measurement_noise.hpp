@@ -1,5 +1,7 @@
 #pragma once
-//! Measurement noise on the voltage a spectral analysis sees (docs/ensembles.md, [noise]).
+//! The measurement chain between the S-TENG port and the record a spectral analysis (or a
+//! user) sees: noise, an amplifier's bandwidth, an offset (docs/model.md, "The measurement
+//! chain"; the study's [noise] table, docs/ensembles.md).
 #include <span>
 #include <vector>
 
@@ -8,26 +10,40 @@
 
 namespace stengmc {
 
-//! Measurement noise added to the voltage before the spectral analysis (MODEL.md §3):
-//! the study's [noise] table.
+//! The study's [noise] table.
 struct NoiseSettings {
-  //! White Gaussian noise at this signal-to-noise ratio: sigma^2 = P / 10^(snr/10) with
-  //! P the mean square of the (mean-removed) voltage over the analysis interval [dB].
+  //! Signal-to-noise ratio of all the noise, white and coloured: sigma^2 = P / 10^(snr/10)
+  //! with P the mean square of the mean-removed clean voltage over the analysis interval [dB].
   double snr_db = 0.0;
+  //! Share of sigma^2 in the 1/f^alpha part, [0, 1]; the rest is white.
+  double coloured_share = 0.0;
+  //! alpha of the coloured part, [0.5, 2] (1: flicker noise).
+  double coloured_exponent = 1.0;
+  //! A constant added after the amplifier [V].
+  double offset_v = 0.0;
+  //! The amplifier's first-order bandwidth (-3 dB) [Hz]; 0: none (flat).
+  double bandwidth_hz = 0.0;
 };
 
 NoiseSettings read_noise_settings(TomlTable& table);
 
 struct NoisyVoltage {
-  std::vector<double> voltage_v;  //!< the voltage plus white Gaussian noise [V]
-  double sigma_v = 0.0;           //!< the noise's standard deviation [V]
+  std::vector<double> voltage_v;  //!< the measured voltage [V]
+  double sigma_v = 0.0;           //!< the standard deviation of all the noise at the amplifier's input [V]
 };
 
-//! Adds white Gaussian noise (one Boost normal draw per sample, in order, from `engine`)
-//! with sigma^2 = P / 10^(snr_db/10), P the mean square of the mean-removed voltage over
-//! samples [first, first + count). A voltage without power there gets no noise (sigma 0):
-//! an SNR of nothing is undefined.
-NoisyVoltage add_white_noise(std::span<const double> voltage_v, std::size_t first, std::size_t count, double snr_db,
-                             RandomEngine& engine);
+//! The measured voltage: V_m = H[V + n_white + n_coloured] + offset, H the amplifier's
+//! first-order low-pass (exact for an input linear between samples) when bandwidth_hz > 0.
+//! sigma^2 = P / 10^(snr_db/10), P the mean square of the mean-removed V over samples
+//! [first, first + count): white noise of variance (1 - share) sigma^2, one Boost normal
+//! draw per sample, in order, from `white`; coloured noise (spectral/power_law_noise.hpp) of
+//! variance share sigma^2 over the same samples, drawn from `coloured`. A voltage without
+//! power there gets no noise (an SNR of nothing is undefined), but its offset and filter.
+NoisyVoltage measure_voltage(std::span<const double> voltage_v, std::size_t first, std::size_t count,
+                             double sample_rate_hz, const NoiseSettings& settings, RandomEngine& white,
+                             RandomEngine& coloured);
+
+//! y' = 2 pi f_c (x - y), solved exactly for x linear between samples, y_0 = x_0.
+std::vector<double> first_order_lowpass(std::span<const double> x, double sample_rate_hz, double bandwidth_hz);
 
 }  // namespace stengmc

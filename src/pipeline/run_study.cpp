@@ -164,10 +164,13 @@ SpectralResult analyse_run_spectra(const Study& study, const RunResult& result) 
 //! ensemble, and no other quantity's draws move.
 void add_measurement_noise(const Study& study, RunResult& result) {
   if (!study.noise) return;
-  RandomEngine engine = random_stream(study.seed, study.realisation, StreamKind::noise);
+  // The white part keeps the stream it always had; the coloured part has a sub-stream.
+  RandomEngine white = random_stream(study.seed, study.realisation, StreamKind::noise);
+  RandomEngine coloured = random_stream(study.seed, study.realisation, StreamKind::noise, 1);
   const AnalysisRange range =
       analysis_range(std::span<const double>(result.times_s.data(), result.circuit_samples), *study.spectrum);
-  NoisyVoltage noisy = add_white_noise(result.circuit.voltage_v, range.first_sample, range.samples, study.noise->snr_db, engine);
+  NoisyVoltage noisy = measure_voltage(result.circuit.voltage_v, range.first_sample, range.samples, study.sample_rate_hz,
+                                       *study.noise, white, coloured);
   result.measured_voltage_v = std::move(noisy.voltage_v);
   result.noise_sigma_v = noisy.sigma_v;
 }
