@@ -48,6 +48,7 @@ constexpr std::array TERMS{
     Term{"/asperity/N", "N", "asperity normal load", "asperity"},
     Term{"/asperity/h", "m", "asperity summit height", "asperity"},
     Term{"/asperity/phi", "rad", "asperity drive phase", "asperity"},
+    Term{"/asperity/onset", "s", "asperity contact onset", "asperity"},
     Term{"/asperity/sigma", "C/m^2", "triboelectric charge density of the S-TENG element", "asperity"},
     Term{"/asperity/d0", "m", "effective dielectric thickness of the element", "asperity"},
     Term{"/asperity/w", "m", "element width", "asperity"},

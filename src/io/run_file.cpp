@@ -1,5 +1,6 @@
 #include "io/run_file.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 
@@ -118,6 +119,9 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.write("/asperity/N", column(study.asperities, [](const Asperity& a) { return a.normal_load_n; }));
   file.write("/asperity/h", column(study.asperities, [](const Asperity& a) { return a.height_m; }));
   file.write("/asperity/phi", column(study.asperities, [](const Asperity& a) { return a.drive_phase_rad; }));
+  // Only where some asperity comes into contact late: files of studies without onsets stay as they were.
+  if (std::any_of(study.asperities.begin(), study.asperities.end(), [](const Asperity& a) { return a.onset_s != 0.0; }))
+    file.write("/asperity/onset", column(study.asperities, [](const Asperity& a) { return a.onset_s; }));
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);

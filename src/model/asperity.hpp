@@ -20,6 +20,9 @@ struct Asperity {
   double drive_phase_rad = 0.0;              //!< phi, Model 1 drive phase [rad]
   double initial_displacement_m = 0.0;       //!< x(0) [m]
   double initial_velocity_m_per_s = 0.0;     //!< x'(0) [m/s]
+  //! Model 2: when it comes into contact [s]; before, at rest at x(0) and carried by nothing
+  //! (its element stays in the circuit).
+  double onset_s = 0.0;
   StengElement element;                      //!< its S-TENG element
 };
 

@@ -218,21 +218,13 @@ RunResult run_study(const Study& study, const RunOptions& options) {
         t.motion->sample(times, true, samples);
         result.statistics[i] = statistics_of(rule, t.x_m, t.v_m_per_s, !t.events.empty());
       } else {
-        Model2Integration integration = integrate_model2(a, study.model2, t_end);
-        t.solver_steps = integration.accepted_steps;
-        t.rejected_steps = integration.rejected_steps;
-        auto motion = std::make_unique<Model2Motion>(std::move(integration));
-        motion->sample(times, true, samples);
-        t.events = motion->relative_velocity_events(study.model2.belt_velocity_m_per_s);
-        t.motion = std::move(motion);
-        if (keep.friction) {
-          const StribeckFriction friction(study.model2, a.normal_load_n);
-          t.friction_n.resize(samples.v_m_per_s.size());
-          // v_r first, then F in place, in one batch (the law's formula inlined in its loop).
-          for (std::size_t j = 0; j < t.friction_n.size(); ++j)
-            t.friction_n[j] = study.model2.belt_velocity_m_per_s - samples.v_m_per_s[j];
-          friction.forces(t.friction_n.data(), t.friction_n.data(), t.friction_n.size());
-        }
+        Model2Solution solution = solve_model2_motion(a, study.model2, t_end);
+        t.solver_steps = solution.accepted_steps;
+        t.rejected_steps = solution.rejected_steps;
+        solution.motion->sample(times, true, samples);
+        t.events = std::move(solution.events);
+        t.motion = std::move(solution.motion);
+        if (keep.friction) model2_friction_trace(a, study.model2, times, samples.v_m_per_s, t.friction_n);
         check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
         result.statistics[i] = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
         if (keep.x) t.x_m = samples.x_m;

@@ -129,6 +129,11 @@ Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> 
   // Model 1's phase omega t is a double: beyond ~1e12 drive periods it keeps no digits, and
   // the slip-end scan's step (1/64 of a period) stops advancing time (the run never ends).
   if (study.model == ModelKind::model1) {
+    for (std::size_t i = 0; i < study.asperities.size(); ++i)
+      if (study.asperities[i].onset_s != 0.0)
+        root.table("model")->fail("kind", "= \"model1\": asperity " + std::to_string(i + 1) + " has onset_s = " +
+                                              format_number(study.asperities[i].onset_s) +
+                                              " s; a contact onset is a Model 2 key (Model 1's drive acts from t = 0)");
     const double periods = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI) * study.duration_s;
     if (!(periods <= MAX_DRIVE_PERIODS))
       root.table("model")->fail("drive_frequency_hz",

@@ -24,6 +24,10 @@ Asperity read_asperity(TomlTable& table, const Asperity& base) {
                                   "omega t + phi would keep no digits of omega t)");
   a.initial_displacement_m = table.number("initial_displacement_m", base.initial_displacement_m);
   a.initial_velocity_m_per_s = table.number("initial_velocity_m_per_s", base.initial_velocity_m_per_s);
+  a.onset_s = table.non_negative("onset_s", base.onset_s);
+  if (!std::isfinite(a.onset_s)) table.fail("onset_s", "must be a finite time >= 0 [s]");
+  if (a.onset_s > 0.0 && a.initial_velocity_m_per_s != 0.0)
+    table.fail("onset_s", "> 0 means the asperity is at rest until its onset: initial_velocity_m_per_s must be 0");
   a.element.charge_density_c_per_m2 = table.number("charge_density_c_per_m2", base.element.charge_density_c_per_m2);
   a.element.effective_thickness_m = table.positive("effective_thickness_m", base.element.effective_thickness_m);
   a.element.width_m = table.positive("width_m", base.element.width_m);

@@ -57,6 +57,7 @@ void validate_model1(const Asperity& asperity, const Model1Params& params, const
     reject("initial_displacement_m", asperity.initial_displacement_m, "finite");
   if (!std::isfinite(asperity.initial_velocity_m_per_s))
     reject("initial_velocity_m_per_s", asperity.initial_velocity_m_per_s, "finite");
+  if (asperity.onset_s != 0.0) reject("onset_s", asperity.onset_s, "0 (a contact onset is a Model 2 key)");
   if (!(grid.step_s > 0.0) || !std::isfinite(grid.step_s))
     reject("output time step [s]", grid.step_s, "finite and > 0");
   if (params.solver == Model1Solver::euler_cromer && params.euler_cromer_substeps < 1)

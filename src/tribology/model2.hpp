@@ -1,5 +1,9 @@
 #pragma once
 //! Model 2: mass on a moving belt with Stribeck friction (MODEL.md §1; paper Eq. 2).
+#include <memory>
+#include <span>
+#include <vector>
+
 #include "model/asperity.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/friction_law.hpp"
@@ -44,6 +48,24 @@ double model2_friction(const Model2Params& params, double normal_load_n, double 
 //! @throws ModelError if the integrator fails (step size underflow, non-finite state); the
 //!         message names k, v_b and the time. @throws InputError for k <= 0 or m <= 0.
 Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, const TimeGrid& grid);
+
+//! One asperity's Model 2 motion over [0, t_end_s] before it is sampled.
+struct Model2Solution {
+  std::unique_ptr<Motion> motion;  //!< dense output (a DelayedMotion when the onset is > 0)
+  std::vector<Event> events;       //!< overtakes and regrips, in time (Event::asperity 0)
+  std::size_t accepted_steps = 0;
+  std::size_t rejected_steps = 0;
+};
+
+//! Integrates from the asperity's contact onset (`onset_s`, clamped to t_end_s), at rest at
+//! its initial displacement before it: the motion from the onset is the one from t = 0
+//! shifted (the equation does not hold t).
+Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params& params, double t_end_s);
+
+//! Friction on the grid from the sampled velocities: F(v_b - x'), and 0 before the onset
+//! (carried by nothing), into `friction_n` (resized).
+void model2_friction_trace(const Asperity& asperity, const Model2Params& params, std::span<const double> times_s,
+                           std::span<const double> velocities_m_per_s, std::vector<double>& friction_n);
 
 //! Damped natural frequency f = sqrt(k/m) sqrt(1 - zeta^2) / 2 pi, zeta = c / (2 sqrt(k m)) [Hz].
 double damped_natural_frequency_hz(double stiffness_n_per_m, double mass_kg, double damping_n_s_per_m);
