@@ -71,7 +71,7 @@ void print_summary(const std::vector<Inversion>& inversions, const std::vector<L
     }
     std::printf("\n");
   } else {
-    std::printf("  stiffness law: fewer than 3 distinct lines, no law fitted\n");
+    std::printf("  stiffness law: none fitted (fewer than 3 distinct lines, or lines of one stiffness to 0.01 %%)\n");
   }
   for (const Inversion& inv : inversions) {
     if (inversions.size() > 1 && inv.warnings.empty()) continue;  // many records: only those with something to say

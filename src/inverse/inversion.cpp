@@ -6,6 +6,7 @@
 
 #include "core/constants.hpp"
 #include "core/format.hpp"
+#include "inverse/sample_statistics.hpp"
 
 namespace stengmc {
 
@@ -83,6 +84,10 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
     out.verdict.push_back(std::to_string(blended) + " lines lie within one line width of another: resolution limits them. "
                           "Their number is sure (two coinciding asperities give twice one atom), their individual "
                           "stiffnesses less so (see each line's interval).");
+  if (k.size() >= 3 && !has_spread(k))
+    out.verdict.push_back("The " + std::to_string(k.size()) + " lines share one stiffness, " + number(sample_median(k)) +
+                          " N/m (sd of ln k " + number(sample_sd_log(k), "%.2g") +
+                          "): asperities of equal k, whose lines merge. No stiffness law is fitted to one stiffness.");
   out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
                         (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
   if (atoms_->data().check_error > 1e-2)

@@ -54,15 +54,28 @@ std::string csv(std::size_t samples, double rate, F value) {
   return csv_with(samples, [rate](std::size_t m) { return static_cast<double>(m) / rate; }, value);
 }
 
-//! A noisy record of the small device with asperities of stiffness `k`.
-std::string simulated_csv(const std::vector<double>& k) {
+//! A record of the small device with asperities of stiffness `k`, white noise of
+//! `noise_v` [V] added, then scaled by `scale` (a record in other units).
+std::string simulated_csv(const std::vector<double>& k, double noise_v = 1e-4, double scale = 1.0) {
   const Study study = parse_study(device_study(), "device.toml", std::nullopt);
   const InverseSetup setup = inverse_setup(study);
   std::vector<double> v = simulate_record(setup.device, k, setup.grid);
   RandomEngine engine = random_stream(3, 0, StreamKind::noise);
-  boost::random::normal_distribution<double> noise(0.0, 1e-4);
-  for (double& x : v) x += noise(engine);
+  boost::random::normal_distribution<double> noise(0.0, noise_v);
+  for (double& x : v) x = scale * (x + (noise_v > 0.0 ? noise(engine) : 0.0));
   return csv(v.size(), 100e6, [&](std::size_t m) { return v[m]; });
+}
+
+//! The suite's device with a prior of 1-8 asperities (no bank: the atoms build in a second).
+std::string device_study_up_to_eight() { return device_study("count = [1, 3]", "count = [1, 8]"); }
+
+//! Runs invert on `signal_text` without a bank; returns the result and the output's path.
+std::pair<testing::CliResult, std::string> invert_unbanked(const ScratchDir& scratch, const std::string& signal_text,
+                                                           const std::string& study = device_study_up_to_eight()) {
+  const std::string signal = scratch.write("signal.csv", signal_text);
+  const std::string known = scratch.write("known.toml", study);
+  const std::string out = scratch.file("out.h5");
+  return {run_cli("invert " + signal + " --known " + known + " --out " + out + " -j 1", scratch), out};
 }
 
 class InvertCommand : public ::testing::Test {
@@ -175,6 +188,20 @@ TEST_F(InvertCommand, InvertsARecordAndDrawsItsFigure) {
   EXPECT_NEAR(k[1] / 85.0, 1.0, 1e-2);
   EXPECT_EQ(file.string_attribute("/", "file_type"), "stengmc-inverse");
   EXPECT_TRUE(std::filesystem::exists(scratch.file("out.png"))) << r.output;
+}
+
+// Four asperities of equal stiffness (a noise-free record, as `stengmc run` gives it) give
+// four lines that merge to ~1e-4 in ln k. The stiffness-law fit stopped the command with
+// Boost's "toms748_solve ... do not bracket the root" or an infinite Weibull scale (exit 1).
+// It is a physical case: four asperities, one stiffness, no law.
+TEST(InvertEqualStiffnesses, FourAsperitiesOfEqualStiffnessAreCounted) {
+  ScratchDir scratch("invert-equal");
+  const auto [r, out] = invert_unbanked(scratch, simulated_csv({75.0, 75.0, 75.0, 75.0}, 0.0));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("The 4 lines share one stiffness, 75"), std::string::npos) << r.output;
+  Hdf5Reader file(out);
+  EXPECT_EQ(file.vector("/inverse/count/estimate"), std::vector<double>{4.0});
+  for (double k : file.vector("/inverse/lines/stiffness_n_per_m")) EXPECT_NEAR(k / 75.0, 1.0, 1e-3);
 }
 
 }  // namespace
