@@ -54,6 +54,9 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   double sigma2 = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v
                                      : fits.back().residual_v2 / static_cast<double>(samples - (fits.size() - 1));
   sigma2 += MODEL_RELATIVE_ACCURACY * MODEL_RELATIVE_ACCURACY * mean_square;
+  // A record far below the device's amplitude (one scaled by 1e-200) squares to 0.
+  const double floor_v = MIN_RELATIVE_NOISE * atoms_->device().voltage_scale_v();
+  sigma2 = std::max(sigma2, floor_v * floor_v);
   out.sigma_v = std::sqrt(sigma2);
   out.posterior = count_posterior(fits, out.sigma_v, prior_, density_);
   if (out.posterior.counts.empty())

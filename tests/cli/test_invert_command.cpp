@@ -204,5 +204,20 @@ TEST(InvertEqualStiffnesses, FourAsperitiesOfEqualStiffnessAreCounted) {
   for (double k : file.vector("/inverse/lines/stiffness_n_per_m")) EXPECT_NEAR(k / 75.0, 1.0, 1e-3);
 }
 
+// A record in mV (x 1e3) or scaled far below the device (x 1e-200) stopped with Boost's
+// bracket error, or "count_posterior: the noise level must be > 0" (exit 1). An amplitude no
+// count of the device's asperities gives is the verdict's to say.
+TEST(InvertOtherUnits, ARecordFarFromTheDevicesAmplitudeIsAnsweredWithAWarning) {
+  for (const auto& [scale, expected] : std::vector<std::pair<double, std::string>>{
+           {1e3, "more than the prior's 8 asperities could give: is the record in other units"},
+           {1e-200, "nothing of this device slides in it"}}) {
+    ScratchDir scratch("invert-units");
+    const auto [r, out] = invert_unbanked(scratch, simulated_csv({55.0, 85.0}, 1e-4, scale));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out)) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace stengmc
