@@ -142,6 +142,7 @@ py::dict invert(const std::string& known, const py::array_t<double, py::array::f
                          differences + ". Make a bank for them with stengmc calibrate (the study's duration_s and "
                          "sample_rate_hz set the record grid)");
     }
+    check_record_varies(voltage, name);
     std::unique_ptr<AtomTable> atoms;
     if (bank) {
       atoms = std::make_unique<AtomTable>(setup.device, setup.grid, bank->atoms);

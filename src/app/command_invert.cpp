@@ -125,6 +125,7 @@ void run(const InvertOptions& options) {
                        differences + ". Make a bank for them with stengmc calibrate (the study's duration_s and "
                        "sample_rate_hz set the record grid)");
   }
+  for (const NamedRecord& r : records) check_record_varies(r.voltage_v, r.name);
   std::printf("stengmc invert: %zu record(s) of %zu samples at %g Hz, known device %s, %s\n", records.size(), grid->samples,
               grid->sample_rate_hz(), options.known.c_str(),
               bank ? ("bank " + bank_path).c_str() : "NO calibration bank (uncalibrated answers)");

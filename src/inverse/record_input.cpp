@@ -1,5 +1,6 @@
 #include "inverse/record_input.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -37,6 +38,13 @@ RecordGrid checked_record_grid(std::span<const double> t, std::span<const double
                        " s; inverse estimation needs a uniform grid (resample the record first)");
   }
   return {t.front(), step, t.size()};
+}
+
+void check_record_varies(std::span<const double> v, const std::string& source) {
+  if (!v.empty() && std::all_of(v.begin(), v.end(), [&](double x) { return x == v[0]; }))
+    throw InputError(source + ": the voltage is " + format_number(v[0] == 0.0 ? 0.0 : v[0]) +
+                     " V at every sample: a record of a sliding device varies, so there is nothing to invert (is it "
+                     "the right column, channel or file?)");
 }
 
 }  // namespace stengmc

@@ -128,6 +128,12 @@ TEST_F(InvertCommand, RejectsNanAndInf) {
   expect_refused(csv(2001, RATE, [](std::size_t m) { return m == 77 ? INFINITY : 0.0; }), "is not two finite numbers");
 }
 
+TEST_F(InvertCommand, RejectsAConstantRecordNamingIt) {
+  // It used to stop with exit 1 and "count_posterior: the noise level must be > 0".
+  expect_refused(csv(2001, RATE, zero), "signal.csv: the voltage is 0 V at every sample");
+  expect_refused(csv(2001, RATE, [](std::size_t) { return 0.25; }), "signal.csv: the voltage is 0.25 V at every sample");
+}
+
 TEST_F(InvertCommand, RejectsTooFewSamples) { expect_refused(csv(63, RATE, zero), "at least 64"); }
 
 TEST_F(InvertCommand, RejectsASampleRateTooLowForThePriorsHighestLine) {
