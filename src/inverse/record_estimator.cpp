@@ -44,7 +44,7 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   out.noise = noise_.estimate(voltage);
 
   LineSearch search(model_, proposals_, voltage, options_);
-  const std::vector<OrderFit> fits = search.search(prior_.count_max + 1);
+  const std::vector<OrderFit> fits = search.search(prior_.count_max + 1, prior_.count_min);
   for (const OrderFit& f : fits) out.fit_residual_v2.push_back(f.residual_v2);
 
   // Noise for the evidence: the band's, else the residual of the largest fit; plus the model's

@@ -225,5 +225,14 @@ TEST(InvertOtherUnits, ARecordFarFromTheDevicesAmplitudeIsAnsweredWithAWarning) 
   }
 }
 
+// A prior whose smallest count lies beyond where the greedy search stops: the search used to
+// end short of it ("the search stopped early", exit 1; a calibration's journal never finished).
+TEST(InvertCountRange, APriorOfOneLargeCountIsAnswered) {
+  ScratchDir scratch("invert-count");
+  const auto [r, out] = invert_unbanked(scratch, simulated_csv({55.0, 85.0}), device_study("count = [1, 3]", "count = [12, 12]"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(Hdf5Reader(out).vector("/inverse/count/estimate"), std::vector<double>{12.0});
+}
+
 }  // namespace
 }  // namespace stengmc
