@@ -101,7 +101,8 @@ void run(const CalibrateOptions& options) {
   const std::size_t invalid = bank.samples.size() - bank.maps.records;
   std::printf("  atoms: %.3g-%.3g N/m, worst check against the forward model %.2g (relative L2), built in %.1f s\n",
               bank.atoms.min_stiffness_n_per_m, bank.atoms.max_stiffness_n_per_m, bank.atoms.check_error, bank.atom_seconds);
-  std::printf("  records: %zu valid, %zu invalid (an asperity reached l: outside the device's range)%s\n", bank.maps.records,
+  std::printf("  records: %zu valid, %zu invalid (an asperity reached l, outside the device's range, or the estimator "
+              "could not answer)%s\n", bank.maps.records,
               invalid, bank.resumed ? (", " + std::to_string(bank.resumed) + " resumed from the journal").c_str() : "");
   std::printf("On the bank's own records (in-sample; the naive FFT count at its best threshold, %g x the local floor):\n%s",
               bank.maps.naive_threshold, bank_table(bank).c_str());

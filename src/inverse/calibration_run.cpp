@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "ensemble/ensemble_runner.hpp"
+#include "inverse/device_checks.hpp"
 #include "inverse/forward_atom.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/prior_study.hpp"
@@ -22,9 +23,6 @@ namespace {
 
 // The prior's lines must sit below Nyquist with room for the noise band above them.
 constexpr double NYQUIST_MARGIN = 1.25;
-// The atoms reach this far beyond the prior's 1e-4 / 1 - 1e-4 quantiles, so lines just
-// outside the prior are still fitted (and reported as such).
-constexpr double ATOM_RANGE_MARGIN = 1.25;
 
 double line_frequency_hz(const KnownDevice& device, double k) { return device.angular_frequency(k) / (2.0 * PI); }
 
@@ -51,15 +49,25 @@ InverseSetup inverse_setup(const Study& study, std::optional<RecordGrid> grid) {
                      format_number(k_high) + " N/m, the 1 - 1e-4 quantile of the stiffness prior of " + study.file +
                      "); lines and the noise band above them need at least " +
                      format_number(2.0 * NYQUIST_MARGIN * f_high) + " Hz");
+  check_device_over_prior(study, setup.device, setup.prior, setup.grid);
   setup.identity = bank_identity(setup.device, setup.prior, setup.grid);
   return setup;
 }
 
 std::pair<double, double> atom_range(const InverseSetup& setup) {
-  const auto [low, high] = setup.prior.support();
-  const double lowest = low / ATOM_RANGE_MARGIN;
-  const double valid = smallest_valid_stiffness(setup.device, setup.grid.at(setup.grid.samples - 1), setup.grid.step_s, lowest);
-  return {std::max(lowest, valid), high * ATOM_RANGE_MARGIN};
+  const auto [lowest, highest] = simulated_stiffness_range(setup.prior);
+  const double valid =
+      smallest_valid_stiffness(setup.device, setup.grid.at(setup.grid.samples - 1), setup.grid.step_s, lowest, highest);
+  if (!(valid < highest)) {
+    const auto [first, second] = setup.prior.parameter_keys();
+    throw InputError(setup.device.study_file + ": [inverse] " + first + ", " + second + ": every stiffness of the prior (up to " +
+                     format_number(highest) + " N/m) is too soft for the known device: its asperity reaches its element's "
+                     "length l = " + format_number(setup.device.asperity.element.length_m) + " m (length_m) within the " +
+                     format_number(setup.grid.duration_s()) + " s record" +
+                     (std::isfinite(valid) ? " below " + format_number(valid) + " N/m" : "") +
+                     ". Give a prior of stiffer asperities, or check normal_load_n, static_friction and length_m");
+  }
+  return {std::max(lowest, valid), highest};
 }
 
 CalibrationBank run_calibration(const Study& device_study, const std::string& journal_path, const CalibrationOptions& options) {
@@ -95,8 +103,15 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
     if (record.valid && !record.measured_voltage_v.empty()) {
       auto& worker = workers[static_cast<std::size_t>(omp_get_thread_num())];
       if (!worker) worker = std::make_unique<Worker>(atoms, prior, band_low, band_high);
-      const RecordEstimate estimate = worker->estimator.estimate(record.measured_voltage_v);
-      store_estimate(record, estimate, worker->naive.count(record.measured_voltage_v, naive_count_thresholds()));
+      try {
+        const RecordEstimate estimate = worker->estimator.estimate(record.measured_voltage_v);
+        store_estimate(record, estimate, worker->naive.count(record.measured_voltage_v, naive_count_thresholds()));
+      } catch (const ModelError& e) {
+        // A record the estimator cannot answer is an invalid record of the bank, said with
+        // its reason, as one whose asperity reached l: not a calibration that stops.
+        record.valid = false;
+        record.failure = std::string("the estimator: ") + e.what();
+      }
     }
     // The bank keeps the estimates, not the traces (10^4 records x 10^4 samples would not fit):
     // their memory is released, not only their size (clear() keeps the capacity, ~32 bytes

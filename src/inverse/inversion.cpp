@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/constants.hpp"
+#include "core/error.hpp"
 #include "core/format.hpp"
 #include "inverse/sample_statistics.hpp"
 
@@ -65,7 +66,11 @@ Inverter::Inverter(const InverseSetup& setup, const AtomTable& atoms, const Cali
 Inversion Inverter::invert(const std::string& name, std::span<const double> voltage) {
   Inversion out;
   out.name = name;
-  out.raw = estimator_.estimate(voltage);
+  try {
+    out.raw = estimator_.estimate(voltage);
+  } catch (const ModelError& e) {
+    throw ModelError(name + ": " + e.what());  // which record, among many
+  }
   out.calibrated = calibrate_estimate(out.raw, maps_, setup_->prior);
   const double threshold = maps_ ? maps_->naive_threshold : DEFAULT_NAIVE_THRESHOLD;
   out.naive_count = naive_.count(voltage, std::vector<double>{threshold}).front();

@@ -79,6 +79,13 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   Eigen::MatrixXd h = best.normal_matrix / sigma2;
   h.diagonal().array() += 1.0 / (spread * spread);
   const Eigen::MatrixXd covariance = out.count > 0 ? Eigen::MatrixXd(h.inverse()) : Eigen::MatrixXd();
+  // Said here, not by a writer refusing a NaN later: a fit whose atoms change ~1e16 times
+  // more with ln k than the noise resolves leaves H singular to rounding.
+  if (!covariance.allFinite() || !std::all_of(best.stiffness_n_per_m.begin(), best.stiffness_n_per_m.end(),
+                                              [](double k) { return std::isfinite(k); }))
+    throw ModelError("the fit of " + std::to_string(out.count) + " atoms to the record is not finite (its stiffnesses or "
+                     "their errors): the record does not determine them; the known device is likely outside the "
+                     "regime the atoms model (a belt-carried stick, then a free oscillation)");
   const KnownDevice& device = atoms_->device();
   for (std::size_t i = 0; i < out.count; ++i) {
     EstimatedLine line;
