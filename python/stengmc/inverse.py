@@ -6,7 +6,8 @@ import numpy as np
 from . import _core
 
 
-def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank=None, name="record"):
+def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank=None, name="record",
+           max_memory_gb=8.0, max_steps=1e11):
     """How many asperities slide, and their stiffnesses, from one record of a known device.
 
     voltage_v        the measured voltage [V] (1-D)
@@ -14,6 +15,9 @@ def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank
     sample_rate_hz   the record's sample rate [Hz], its first sample at start_s [s]; or
     time_s           the sample times [s] (uniform, as `stengmc invert` demands of a CSV)
     bank             a calibration bank from `stengmc calibrate` (None: uncalibrated answer)
+    max_memory_gb    refuse, before starting, an inversion estimated to need more memory [GB]
+    max_steps        ... or more solver steps (~100 ns each): `stengmc invert`'s --max-memory-gb
+                     and --max-steps, with the same defaults
 
     Returns a dict named as the inverse file's /inverse/ datasets: count (counts,
     probability = P(n), estimate, interval_low, interval_high, ...), lines (stiffness_n_per_m
@@ -27,4 +31,5 @@ def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank
         times = start_s + np.arange(voltage.size, dtype=np.float64) / float(sample_rate_hz)
     else:
         times = np.asarray(time_s, dtype=np.float64)
-    return _core.invert(os.fspath(known), times, voltage, None if bank is None else os.fspath(bank), name)
+    return _core.invert(os.fspath(known), times, voltage, None if bank is None else os.fspath(bank), name,
+                        float(max_memory_gb), float(max_steps))

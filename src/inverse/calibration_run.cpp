@@ -13,6 +13,7 @@
 #include "ensemble/ensemble_runner.hpp"
 #include "inverse/device_checks.hpp"
 #include "inverse/forward_atom.hpp"
+#include "inverse/inversion_work.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/prior_study.hpp"
 #include "inverse/record_estimator.hpp"
@@ -80,6 +81,13 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
   bank.device_study_file = device_study.file;
   bank.device_study_text = device_study.text;
   if (bank.setup.grid.start_s != 0.0) throw InputError("a calibration simulates records from t = 0");
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  check_work(estimate_inversion(device_study, bank.setup,
+                                {.records = prior.calibration_records, .threads = threads, .simulates_records = true}),
+             options.limits,
+             device_study.file + ": the calibration's " + std::to_string(prior.calibration_records) + " records of " +
+                 std::to_string(bank.setup.grid.samples) + " samples (--records, or [inverse] calibration_records)",
+             options.limit_names);
 
   const auto [k_low, k_high] = atom_range(bank.setup);
   const AtomTable atoms(bank.setup.device, bank.setup.grid, k_low, k_high);
@@ -92,7 +100,6 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
       prior_study_text(bank.setup.device, prior, prior.calibration_records, prior.seed, band_low, band_high);
   const StudyFile prior_study = parse_study_file(bank.prior_study_text, device_study.file + " (calibration prior)", std::nullopt);
 
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::vector<std::unique_ptr<Worker>> workers(static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));
   RealisationHook hook;
   hook.needs_traces = true;
@@ -124,6 +131,7 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
   ensemble_options.threads = threads;
   ensemble_options.restart = options.restart;
   ensemble_options.show_progress = options.show_progress;
+  ensemble_options.limits = options.limits;
   const std::clock_t cpu_start = std::clock();  // process CPU time, all threads
   const EnsembleRun run = run_ensemble(prior_study, journal_path, ensemble_options, hook);
   if (run.worker) {

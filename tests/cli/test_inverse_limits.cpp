@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "inverse/calibration_run.hpp"
+#include "inverse/inversion_work.hpp"
+#include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
 
@@ -116,6 +119,55 @@ TEST(InverseDeviceChecks, APriorTooSoftForTheDeviceIsRefusedNamingTheFileAndKeys
   const Outcome o = invert_and_calibrate(device_study("median_n_per_m = [60, 90]", "median_n_per_m = [0.5, 1]"));
   expect_refused(o, 2, {"known.toml:", "[surface.defaults] normal_load_n", "median_n_per_m, sigma_log"});
   EXPECT_EQ(o.invert.output.find("atom table"), std::string::npos) << o.invert.output;
+}
+
+// calibrate had no work limits: --records 1000000 started with an ETA of 15 h (at ~167 kB a
+// record, ~167 GB). Now its estimate is refused before anything runs, as the other
+// commands' are, naming the records, the estimate, the limit and the factor.
+TEST(InverseWorkLimits, CalibrateRefusesAMillionRecordsUpFront) {
+  ScratchDir scratch("inverse-records");
+  const std::string known = scratch.write("known.toml", device_study());
+  const CliResult r = run_bounded("calibrate " + known + " -o " + scratch.file("bank.h5") + " --records 1000000", scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const char* e : {"known.toml: the calibration's 1000000 records of 2001 samples", "needs ~", "x the limit of",
+                        "Reduce it, or raise the limit with --max-"})
+    EXPECT_NE(r.output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << r.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("bank.h5")));
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("bank.h5.journal")));
+}
+
+// invert had no --max-memory-gb / --max-steps: a long record ran unbounded. Both commands
+// now take the limits and apply them to their estimate before anything is computed.
+TEST(InverseWorkLimits, BothCommandsTakeTheLimitsOfTheOtherCommands) {
+  ScratchDir scratch("inverse-options");
+  const std::string known = scratch.write("known.toml", device_study());
+  const std::string record = scratch.write("long.csv", sine_csv(200001));
+  const CliResult memory = run_bounded("invert " + record + " --known " + known + " -o " + scratch.file("out.h5") + " --max-memory-gb 0.2", scratch);
+  EXPECT_EQ(memory.exit_code, 2) << memory.output;
+  for (const char* e : {"inverting 1 record(s) of 200001 samples needs ~", "GB of memory", "--max-memory-gb"})
+    EXPECT_NE(memory.output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << memory.output;
+  const CliResult steps = run_bounded("invert " + record + " --known " + known + " -o " + scratch.file("out.h5") + " --max-steps 1e6", scratch);
+  EXPECT_EQ(steps.exit_code, 2) << steps.output;
+  EXPECT_NE(steps.output.find("steps, "), std::string::npos) << steps.output;
+  EXPECT_NE(steps.output.find("--max-steps"), std::string::npos) << steps.output;
+  const CliResult bank = run_bounded("calibrate " + known + " -o " + scratch.file("bank.h5") + " --max-memory-gb 0.01", scratch);
+  EXPECT_EQ(bank.exit_code, 2) << bank.output;
+  EXPECT_NE(bank.output.find("--max-memory-gb"), std::string::npos) << bank.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("bank.h5.journal")));
+}
+
+// A record of 1e7 samples (Python's invert(np.zeros(10**8)) reached 11.5 GB) is over the
+// default limits: the atoms' forward runs and the estimators alone need more than 8 GB.
+TEST(InverseWorkLimits, ATenMillionSampleRecordIsOverTheDefaultLimits) {
+  const Study known = parse_study(device_study(), "known.toml", std::nullopt);
+  const InverseSetup setup = inverse_setup(known, RecordGrid{0.0, 1e-8, 10'000'000});
+  const WorkEstimate e = estimate_inversion(known, setup, {.records = 1, .threads = 2, .builds_atoms = true});
+  EXPECT_GT(e.memory_bytes, WorkLimits{}.memory_bytes);
+  EXPECT_NE(exceeded_limit(e, WorkLimits{}).find("--max-memory-gb"), std::string::npos);
+  // The same device on its own 2001-sample grid is well within them.
+  const WorkEstimate small = estimate_inversion(known, inverse_setup(known), {.records = 1, .threads = 2, .builds_atoms = true});
+  EXPECT_EQ(exceeded_limit(small, WorkLimits{}), "");
 }
 
 }  // namespace
