@@ -234,5 +234,24 @@ TEST(InvertCountRange, APriorOfOneLargeCountIsAnswered) {
   EXPECT_EQ(Hdf5Reader(out).vector("/inverse/count/estimate"), std::vector<double>{12.0});
 }
 
+// [inverse] snr_db = [-1e9, 1e9] was accepted by invert, and calibrate reported it at line 61
+// of a 40-line file under a [noise] table it does not have; [300, 400] failed mid-run naming
+// [[ensemble.draw]]. Both are refused at the key's own line with the range [noise] accepts.
+TEST_F(InvertCommand, RejectsAnSnrRangeBeyondWhatNoiseAcceptsAtItsLine) {
+  for (const std::string range : {"[-1e9, 1e9]", "[300, 400]"}) {
+    const std::string study = device_study("snr_db = [25, 35]", "snr_db = " + range);
+    std::size_t line = 1;
+    for (std::size_t at = 0; at < study.find("snr_db"); ++at) line += study[at] == '\n';
+    const std::string expected = "known.toml:" + std::to_string(line) + ": [inverse] snr_db = ";
+    expect_refused(simulated_csv({55.0}), expected, study);
+    ScratchDir scratch("invert-snr");
+    const auto c = run_cli("calibrate " + scratch.write("known.toml", study) + " -o " + scratch.file("bank.h5"), scratch);
+    EXPECT_EQ(c.exit_code, 2) << c.output;
+    EXPECT_NE(c.output.find(expected), std::string::npos) << c.output;
+    EXPECT_NE(c.output.find("must lie in [-300, 300] dB"), std::string::npos) << c.output;
+    EXPECT_FALSE(std::filesystem::exists(scratch.file("bank.h5.journal")));
+  }
+}
+
 }  // namespace
 }  // namespace stengmc
