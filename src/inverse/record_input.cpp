@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "spectral/analysed_voltage.hpp"
 
 namespace stengmc {
 
@@ -19,6 +20,10 @@ RecordGrid checked_record_grid(std::span<const double> t, std::span<const double
     if (!std::isfinite(v[m]))
       throw InputError(source + ": voltage of sample " + std::to_string(m + 1) + " (t = " + format_number(t[m]) +
                        " s) is not a finite number (NaN or Inf)");
+    if (!(std::abs(v[m]) <= MAX_ANALYSED_VOLTAGE_V))
+      throw InputError(source + ": voltage of sample " + std::to_string(m + 1) + " (t = " + format_number(t[m]) + " s) = " +
+                       format_number(v[m]) + " V is beyond what the analysis can square and sum (|V| <= " +
+                       format_number(MAX_ANALYSED_VOLTAGE_V) + " V)");
   }
   if (t[0] < 0.0)
     throw InputError(source + ": the first time is " + format_number(t[0]) +

@@ -14,6 +14,8 @@
 #include "inverse/calibration_run.hpp"
 #include "inverse/simulated_record.hpp"
 #include "core/hdf5_file.hpp"
+
+#include <H5Cpp.h>
 #include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
@@ -234,6 +236,56 @@ TEST(InvertCountRange, APriorOfOneLargeCountIsAnswered) {
   EXPECT_EQ(Hdf5Reader(out).vector("/inverse/count/estimate"), std::vector<double>{12.0});
 }
 
+//! Writes a record file as another program would: /time as doubles, /circuit/voltage as
+//! `type` (int64 or float32) holding `voltage` converted to it.
+void write_typed_record(const std::string& path, const std::vector<double>& voltage, const H5::PredType& type) {
+  H5::H5File file(path, H5F_ACC_TRUNC);
+  const hsize_t n = voltage.size();
+  const H5::DataSpace space(1, &n);
+  std::vector<double> t(voltage.size());
+  for (std::size_t m = 0; m < t.size(); ++m) t[m] = static_cast<double>(m) / RATE;
+  file.createDataSet("/time", H5::PredType::NATIVE_DOUBLE, space).write(t.data(), H5::PredType::NATIVE_DOUBLE);
+  file.createGroup("/circuit");
+  // HDF5 converts the doubles to the dataset's type (rounding to integers for int64).
+  file.createDataSet("/circuit/voltage", type, space).write(voltage.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+//! The voltages of simulated_csv({55, 85}) (its second column).
+std::vector<double> simulated_voltages() {
+  const std::string text = simulated_csv({55.0, 85.0});
+  std::vector<double> v;
+  for (std::size_t at = text.find('\n'); at != std::string::npos && at + 1 < text.size(); at = text.find('\n', at + 1))
+    v.push_back(std::stod(text.substr(text.find(',', at) + 1)));
+  return v;
+}
+
+// An int64 voltage dataset (the record in uV) stopped with Boost's "tgamma ... Series
+// evaluation exceeded 1000000 iterations" or its bracket error (exit 1). It is read as the
+// numbers it holds, as is a float32 one, and answered.
+TEST(InvertRecordTypes, IntegerAndFloat32VoltagesAreReadAsNumbers) {
+  const std::vector<double> volts = simulated_voltages();
+  std::vector<double> microvolts(volts.size());
+  for (std::size_t m = 0; m < volts.size(); ++m) microvolts[m] = std::round(volts[m] * 1e6);
+  ScratchDir scratch("invert-types");
+  const std::string known = scratch.write("known.toml", device_study_up_to_eight());
+  const std::string integers = scratch.file("int64.h5"), singles = scratch.file("float32.h5");
+  write_typed_record(integers, microvolts, H5::PredType::STD_I64LE);
+  write_typed_record(singles, volts, H5::PredType::IEEE_F32LE);
+
+  const auto r = run_cli("invert " + integers + " --known " + known + " --out " + scratch.file("int.h5") + " -j 1", scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(Hdf5Reader(scratch.file("int.h5")).vector("/inverse/traces/record_0/voltage"), microvolts);
+  EXPECT_NE(r.output.find("is the record in other units"), std::string::npos) << r.output;
+
+  const auto f = run_cli("invert " + singles + " --known " + known + " --out " + scratch.file("f32.h5") + " -j 1", scratch);
+  ASSERT_EQ(f.exit_code, 0) << f.output;
+  const Hdf5Reader out(scratch.file("f32.h5"));
+  EXPECT_EQ(out.vector("/inverse/count/estimate"), std::vector<double>{2.0});
+  const std::vector<double> read = out.vector("/inverse/traces/record_0/voltage");
+  ASSERT_EQ(read.size(), volts.size());
+  for (std::size_t m = 0; m < volts.size(); ++m) ASSERT_EQ(read[m], static_cast<double>(static_cast<float>(volts[m]))) << m;
+}
+
 // [inverse] snr_db = [-1e9, 1e9] was accepted by invert, and calibrate reported it at line 61
 // of a 40-line file under a [noise] table it does not have; [300, 400] failed mid-run naming
 // [[ensemble.draw]]. Both are refused at the key's own line with the range [noise] accepts.
@@ -251,6 +303,46 @@ TEST_F(InvertCommand, RejectsAnSnrRangeBeyondWhatNoiseAcceptsAtItsLine) {
     EXPECT_NE(c.output.find("must lie in [-300, 300] dB"), std::string::npos) << c.output;
     EXPECT_FALSE(std::filesystem::exists(scratch.file("bank.h5.journal")));
   }
+}
+
+//! Copies `from` to `to` and sets the integer root attribute `name` to `value`.
+void copy_with_attribute(const std::string& from, const std::string& to, const std::string& name, std::int64_t value) {
+  std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+  H5::H5File file(to, H5F_ACC_RDWR);
+  H5::Group root = file.openGroup("/");
+  if (root.attrExists(name)) root.removeAttr(name);
+  root.createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR)).write(H5::PredType::NATIVE_INT64, &value);
+}
+
+// format_version = -1 on a record file, and format_version or bank_format_version = -1 on a
+// bank, were accepted by invert: refused naming the file and the attribute.
+TEST_F(InvertCommand, RejectsNegativeFormatVersionsOfRecordsAndBanks) {
+  ScratchDir scratch("invert-versions");
+  const std::string known = scratch.write("known.toml", device_study());
+  const std::string csv_record = scratch.write("signal.csv", simulated_csv({55.0}));
+  const std::string run_record = scratch.file("run.h5");
+  {
+    Hdf5Writer file(run_record);
+    file.attribute("/", "file_type", std::string("stengmc-run"));
+    file.attribute("/", "format_version", std::int64_t{-1});
+    const std::vector<double> v = simulated_voltages();
+    std::vector<double> t(v.size());
+    for (std::size_t m = 0; m < t.size(); ++m) t[m] = static_cast<double>(m) / RATE;
+    file.write("/time", t, "s");
+    file.write("/circuit/voltage", v, "V");
+    file.commit();
+  }
+  auto refused = [&](const std::string& arguments, const std::vector<std::string>& expected) {
+    const auto r = run_cli("invert " + arguments + " --known " + known + " --out " + scratch.file("out.h5"), scratch);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    for (const std::string& e : expected) EXPECT_NE(r.output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  };
+  refused(run_record, {"run.h5", "format_version -1"});
+  copy_with_attribute(scratch_->file("bank.h5"), scratch.file("bank1.h5"), "format_version", -1);
+  refused(csv_record + " --bank " + scratch.file("bank1.h5"), {"bank1.h5", "format_version -1"});
+  copy_with_attribute(scratch_->file("bank.h5"), scratch.file("bank2.h5"), "bank_format_version", -1);
+  refused(csv_record + " --bank " + scratch.file("bank2.h5"), {"bank2.h5", "bank_format_version -1"});
 }
 
 }  // namespace
