@@ -345,5 +345,17 @@ TEST_F(InvertCommand, RejectsNegativeFormatVersionsOfRecordsAndBanks) {
   refused(csv_record + " --bank " + scratch.file("bank2.h5"), {"bank2.h5", "bank_format_version -1"});
 }
 
+// A CSV line of 10 MB was echoed whole in the error message.
+TEST_F(InvertCommand, QuotesALongBadLineShort) {
+  const std::string line = "1e-08," + std::string(10'000'000, 'x');
+  ScratchDir scratch("invert-long-line");
+  const std::string signal = scratch.write("signal.csv", "t,V\n0,0\n" + line + "\n");
+  const auto r = run_cli("invert " + signal + " --known " + scratch_->file("device.toml") + " --out " + scratch.file("o.h5"), scratch);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("signal.csv:3: '1e-08,xxxx"), std::string::npos) << r.output.substr(0, 400);
+  EXPECT_NE(r.output.find("... (10000006 characters)' is not two finite numbers"), std::string::npos) << r.output.substr(0, 400);
+  EXPECT_LT(r.output.size(), 1000u);
+}
+
 }  // namespace
 }  // namespace stengmc
