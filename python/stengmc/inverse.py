@@ -1,9 +1,11 @@
 """The inverse estimator on a measured record (README: inverse estimation)."""
+import math
 import os
 
 import numpy as np
 
 from . import _core
+from .errors import InputError
 
 
 def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank=None, name="record",
@@ -28,7 +30,10 @@ def invert(voltage_v, known, sample_rate_hz=None, time_s=None, start_s=0.0, bank
     if (sample_rate_hz is None) == (time_s is None):
         raise TypeError("invert: give sample_rate_hz or time_s (one of them)")
     if time_s is None:
-        times = start_s + np.arange(voltage.size, dtype=np.float64) / float(sample_rate_hz)
+        rate = float(sample_rate_hz)
+        if not (math.isfinite(rate) and rate > 0.0):
+            raise InputError(f"{name}: sample_rate_hz = {sample_rate_hz!r} must be a finite number > 0 [Hz]")
+        times = start_s + np.arange(voltage.size, dtype=np.float64) / rate
     else:
         times = np.asarray(time_s, dtype=np.float64)
     return _core.invert(os.fspath(known), times, voltage, None if bank is None else os.fspath(bank), name,

@@ -95,3 +95,17 @@ def test_invert_takes_the_command_lines_limits_as_keyword_arguments(stengmc):
         for value in (0, -1, float("nan"), float("inf")):
             with pytest.raises(ValueError, match=f"{argument} = .* must be a finite number > 0"):
                 stengmc.invert(volts, known=source(DEMO), time_s=times, **{argument: value})
+
+
+def test_invert_names_a_sample_rate_that_is_not_one(stengmc):
+    # sample_rate_hz=0 was reported as bad times (inf and nan).
+    _, volts = demo_record()
+    for rate in (0, -1e8, float("nan")):
+        with pytest.raises(stengmc.InputError, match="my_record: sample_rate_hz = .* must be a finite number > 0"):
+            stengmc.invert(volts, known=source(DEMO), sample_rate_hz=rate, name="my_record")
+
+
+def test_invert_refuses_a_constant_record_naming_it(stengmc):
+    # It stopped with the internal "count_posterior: the noise level must be > 0".
+    with pytest.raises(stengmc.InputError, match="my_record: the voltage is 0 V at every sample"):
+        stengmc.invert(np.zeros(5001), known=source(DEMO), sample_rate_hz=100e6, name="my_record")
