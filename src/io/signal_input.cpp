@@ -84,7 +84,8 @@ SignalInput read_signal_csv(const std::string& path) {
     const auto t = parse_number(trim_blanks(t_text)), v = parse_number(trim_blanks(v_text));
     if (!t || !v) throw InputError(path + ":" + std::to_string(number) + ": '" + text_excerpt(line) + "' is not two finite numbers");
     if (std::abs(*v) > MAX_ANALYSED_VOLTAGE_V)
-      throw InputError(path + ":" + std::to_string(number) + ": V = " + text_excerpt(trim_blanks(v_text)) + " is beyond what the analysis can square "
+      throw InputError(path + ":" + std::to_string(number) + ": V = " + text_excerpt(trim_blanks(v_text)) +
+                       " is beyond what the analysis can square "
                        "and sum (|V| <= 1e100 V)");
     input.times_s.push_back(*t);
     input.voltage_v.push_back(*v);

@@ -71,7 +71,8 @@ Outcome invert_and_calibrate(const std::string& study, const std::string& extra 
 void expect_refused(const Outcome& o, int exit_code, const std::vector<std::string>& expected) {
   for (const CliResult* r : {&o.invert, &o.calibrate}) {
     EXPECT_EQ(r->exit_code, exit_code) << r->output;
-    for (const std::string& e : expected) EXPECT_NE(r->output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << r->output;
+    for (const std::string& e : expected)
+      EXPECT_NE(r->output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << r->output;
   }
   EXPECT_FALSE(o.left_something);
 }
@@ -86,7 +87,8 @@ TEST(InverseDeviceChecks, InvertAndCalibrateRefuseUpFrontWhatCannotRunOrHasNoLin
     std::vector<std::string> expected;
   };
   const std::vector<Case> cases = {
-      {"mass_kg = 1e-12", "mass_kg = 1e-300", {"known.toml", "sample_rate_hz = 1e+08 Hz is below twice the highest natural frequency"}},
+      {"mass_kg = 1e-12", "mass_kg = 1e-300",
+       {"known.toml", "sample_rate_hz = 1e+08 Hz is below twice the highest natural frequency"}},
       {"load_resistance_ohm = 1e6", "load_resistance_ohm = 1e300",
        {"known.toml:", "[circuit] load_resistance_ohm = 1e+300 Ohm", "beyond what inverse estimation can square and sum"}},
       {"damping_n_s_per_m = 1e-7", "damping_n_s_per_m = 1", {"known.toml:", "[model] damping_n_s_per_m = 1 N s/m over-damps"}},
@@ -142,11 +144,12 @@ TEST(InverseWorkLimits, BothCommandsTakeTheLimitsOfTheOtherCommands) {
   ScratchDir scratch("inverse-options");
   const std::string known = scratch.write("known.toml", device_study());
   const std::string record = scratch.write("long.csv", sine_csv(200001));
-  const CliResult memory = run_bounded("invert " + record + " --known " + known + " -o " + scratch.file("out.h5") + " --max-memory-gb 0.2", scratch);
+  const std::string invert = "invert " + record + " --known " + known + " -o " + scratch.file("out.h5");
+  const CliResult memory = run_bounded(invert + " --max-memory-gb 0.2", scratch);
   EXPECT_EQ(memory.exit_code, 2) << memory.output;
   for (const char* e : {"inverting 1 record(s) of 200001 samples needs ~", "GB of memory", "--max-memory-gb"})
     EXPECT_NE(memory.output.find(e), std::string::npos) << "expected '" << e << "' in:\n" << memory.output;
-  const CliResult steps = run_bounded("invert " + record + " --known " + known + " -o " + scratch.file("out.h5") + " --max-steps 1e6", scratch);
+  const CliResult steps = run_bounded(invert + " --max-steps 1e6", scratch);
   EXPECT_EQ(steps.exit_code, 2) << steps.output;
   EXPECT_NE(steps.output.find("steps, "), std::string::npos) << steps.output;
   EXPECT_NE(steps.output.find("--max-steps"), std::string::npos) << steps.output;

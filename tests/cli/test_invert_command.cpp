@@ -1,7 +1,8 @@
 // `stengmc calibrate` and `stengmc invert` through the real command line: rejected inputs
 // (exit 2, a message naming the problem, no output file), a bank refused for other known
-// parameters, a calibration bitwise the same on 1 and 2 threads, and a record inverted end
-// to end with its figure.
+// parameters, a calibration bitwise the same on 1 and 2 threads, a record inverted end to
+// end with its figure, and records it used to stop on with a library's text (equal
+// stiffnesses, other units, integer voltages, a prior's large smallest count).
 #include <gtest/gtest.h>
 
 #include <boost/random/normal_distribution.hpp>
