@@ -5,12 +5,16 @@
 // /inverse/ datasets hold for that record, under the same names.
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
 #include "bindings.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
+#include "inverse/inversion_work.hpp"
 #include "inverse/record_input.hpp"
 #include "io/calibration_bank_file.hpp"
 #include "numpy_arrays.hpp"
@@ -111,9 +115,20 @@ py::dict to_dict(const Inversion& inv, const std::string& bank_path) {
   return out;
 }
 
+//! A limit given as a keyword argument: a finite number > 0, else InputError naming it.
+double checked_limit(double value, const char* argument, const char* unit) {
+  if (!(std::isfinite(value) && value > 0.0))
+    throw InputError(std::string("invert: ") + argument + " = " + format_number(value) + " must be a finite number > 0 [" +
+                     unit + "]");
+  return value;
+}
+
 py::dict invert(const std::string& known, const py::array_t<double, py::array::forcecast>& time_s,
                 const py::array_t<double, py::array::forcecast>& voltage_v, const std::optional<std::string>& bank_path,
-                const std::string& name) {
+                const std::string& name, double max_memory_gb, double max_steps) {
+  // As the command line's --max-memory-gb and --max-steps, raised under their own names.
+  const WorkLimits limits{checked_limit(max_memory_gb, "max_memory_gb", "GB") * 1e9, checked_limit(max_steps, "max_steps", "steps")};
+  const LimitNames names{"max_memory_gb", "max_steps"};
   const std::vector<double> times = from_numpy(time_s, name + ": time_s");
   const std::vector<double> voltage = from_numpy(voltage_v, name + ": voltage_v");
   if (times.size() != voltage.size())
@@ -142,6 +157,9 @@ py::dict invert(const std::string& known, const py::array_t<double, py::array::f
                          differences + ". Make a bank for them with stengmc calibrate (the study's duration_s and "
                          "sample_rate_hz set the record grid)");
     }
+    check_work(estimate_inversion(study, setup, {.records = 1, .threads = 1, .builds_atoms = !bank}), limits,
+               name + ": inverting its " + std::to_string(setup.grid.samples) + " samples", names);
+    check_record_varies(voltage, name);
     std::unique_ptr<AtomTable> atoms;
     if (bank) {
       atoms = std::make_unique<AtomTable>(setup.device, setup.grid, bank->atoms);
@@ -159,7 +177,8 @@ py::dict invert(const std::string& known, const py::array_t<double, py::array::f
 
 void bind_invert(py::module_& m) {
   m.def("invert", &invert, py::arg("known"), py::arg("time_s"), py::arg("voltage_v"), py::arg("bank") = py::none(),
-        py::arg("name") = "record",
+        py::arg("name") = "record", py::arg("max_memory_gb") = WorkLimits{}.memory_bytes / 1e9,
+        py::arg("max_steps") = WorkLimits{}.steps,
         "Inverts one measured record of the known device `known` (a study file with [inverse]); with `bank` "
         "(from `stengmc calibrate`) the answer is calibrated, without it the raw posterior");
 }

@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
+#include "app/limit_options.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "ensemble/process_world.hpp"
@@ -21,6 +22,7 @@ struct CalibrateOptions {
   bool restart = false;
   long long records = 0;  // 0: the study's [inverse] calibration_records
   bool refit = false;     // refit the maps of an existing bank from its records
+  LimitOptions limits;
 };
 
 //! In-bank figures by bin of the true count: what the estimator did on the records it was
@@ -62,6 +64,7 @@ void run(const CalibrateOptions& options) {
   CalibrationOptions calibration;
   calibration.threads = options.threads;
   calibration.restart = options.restart;
+  calibration.limits = options.limits.limits();
   if (options.records > 0) calibration.records = static_cast<std::size_t>(options.records);
   // Everything the bank would be made from is checked before the long run starts.
   const InverseSetup setup = inverse_setup(study);
@@ -101,7 +104,8 @@ void run(const CalibrateOptions& options) {
   const std::size_t invalid = bank.samples.size() - bank.maps.records;
   std::printf("  atoms: %.3g-%.3g N/m, worst check against the forward model %.2g (relative L2), built in %.1f s\n",
               bank.atoms.min_stiffness_n_per_m, bank.atoms.max_stiffness_n_per_m, bank.atoms.check_error, bank.atom_seconds);
-  std::printf("  records: %zu valid, %zu invalid (an asperity reached l: outside the device's range)%s\n", bank.maps.records,
+  std::printf("  records: %zu valid, %zu invalid (an asperity reached l, outside the device's range, or the estimator "
+              "could not answer)%s\n", bank.maps.records,
               invalid, bank.resumed ? (", " + std::to_string(bank.resumed) + " resumed from the journal").c_str() : "");
   std::printf("On the bank's own records (in-sample; the naive FFT count at its best threshold, %g x the local floor):\n%s",
               bank.maps.naive_threshold, bank_table(bank).c_str());
@@ -132,6 +136,7 @@ void add_calibrate_command(CLI::App& app) {
       ->check(CLI::Range(50LL, 1000000LL));
   command->add_flag("--refit", options->refit,
                     "Refit the maps of the existing bank (--out) from its records, without simulating again");
+  add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }
 

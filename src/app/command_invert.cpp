@@ -8,11 +8,14 @@
 
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
+#include "app/limit_options.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 #include "core/progress.hpp"
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
+#include "inverse/inversion_work.hpp"
 #include "inverse/record_input.hpp"
 #include "io/calibration_bank_file.hpp"
 #include "io/inverse_file.hpp"
@@ -29,6 +32,7 @@ struct InvertOptions {
   std::string out;
   bool figures = false;
   int threads = 0;
+  LimitOptions limits;
 };
 
 std::string default_bank(const std::string& known) {
@@ -71,7 +75,7 @@ void print_summary(const std::vector<Inversion>& inversions, const std::vector<L
     }
     std::printf("\n");
   } else {
-    std::printf("  stiffness law: fewer than 3 distinct lines, no law fitted\n");
+    std::printf("  stiffness law: none fitted (fewer than 3 distinct lines, or lines of one stiffness to 0.01 %%)\n");
   }
   for (const Inversion& inv : inversions) {
     if (inversions.size() > 1 && inv.warnings.empty()) continue;  // many records: only those with something to say
@@ -88,9 +92,13 @@ void run(const InvertOptions& options) {
   if (!options.bank.empty()) inputs.push_back({options.bank, "the calibration bank"});
   check_output_path(options.out, inputs);
 
-  // Every record read and checked before anything is computed.
+  // Every record read and checked before anything is computed; a CSV's size bounds what
+  // reading it costs before it is read.
   std::vector<NamedRecord> records;
   for (const std::string& path : options.signals) {
+    if (std::filesystem::path(path).extension() == ".csv" || std::filesystem::path(path).extension() == ".CSV")
+      check_work(estimate_record_reading(static_cast<double>(check_input_file(path, "the record CSV file"))),
+                 options.limits.limits(), path + ": reading it");
     std::vector<NamedRecord> more = read_inverse_records(path);
     for (NamedRecord& r : more) records.push_back(std::move(r));
   }
@@ -125,6 +133,12 @@ void run(const InvertOptions& options) {
                        differences + ". Make a bank for them with stengmc calibrate (the study's duration_s and "
                        "sample_rate_hz set the record grid)");
   }
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  check_work(estimate_inversion(study, setup, {.records = records.size(), .threads = threads, .builds_atoms = !bank}),
+             options.limits.limits(),
+             options.known + ": inverting " + std::to_string(records.size()) + " record(s) of " +
+                 std::to_string(grid->samples) + " samples");
+  for (const NamedRecord& r : records) check_record_varies(r.voltage_v, r.name);
   std::printf("stengmc invert: %zu record(s) of %zu samples at %g Hz, known device %s, %s\n", records.size(), grid->samples,
               grid->sample_rate_hz(), options.known.c_str(),
               bank ? ("bank " + bank_path).c_str() : "NO calibration bank (uncalibrated answers)");
@@ -140,7 +154,6 @@ void run(const InvertOptions& options) {
   }
 
   std::vector<Inversion> inversions(records.size());
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   std::optional<Progress> progress;
   progress.emplace("invert", records.size());
   std::mutex mutex;
@@ -211,6 +224,7 @@ void add_invert_command(CLI::App& app) {
   command->add_option("-o,--out", options->out, "Output HDF5 file (/inverse)")->required();
   command->add_flag("-f,--figures", options->figures, "Also render the PNG figure (spectrum with the fitted lines, P(n), stiffness law)");
   command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }
 

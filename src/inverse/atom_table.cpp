@@ -33,23 +33,45 @@ double envelope_span(const RecordGrid& grid) { return grid.at(grid.samples - 1) 
 // Breakaway times are known to ~20 % from the closed form; heads reach this far past it.
 constexpr double BREAKAWAY_MARGIN = 1.2;
 
+//! Nodes of a grid of ln k with `step` over [k_min, k_max], at least `fewest`.
+std::size_t log_grid_points(double k_min, double k_max, double step, std::size_t fewest) {
+  return std::max<std::size_t>(fewest, static_cast<std::size_t>(std::ceil(std::log(k_max / k_min) / step)) + 1);
+}
+
+double breakaway_time_of(const KnownDevice& device, double k) {
+  return device.sliding_friction_n() / (k * device.model.belt_velocity_m_per_s);
+}
+
+//! Samples every head holds: the softest asperity breaks away last, and every head is
+//! stored that long (on whole samples; a record shorter than that is all head).
+std::size_t head_samples_of(const KnownDevice& device, const RecordGrid& grid, double k_min, const AtomTableSettings& settings) {
+  const double head_end = breakaway_time_of(device, k_min) * BREAKAWAY_MARGIN + settings.head_after_breakaway_s;
+  return std::min(grid.samples, static_cast<std::size_t>(std::ceil(std::max(0.0, head_end - grid.start_s) / grid.step_s)));
+}
+
 }  // namespace
+
+AtomTableRuns atom_table_runs(const KnownDevice& device, const RecordGrid& grid, double k_min, double k_max,
+                              const AtomTableSettings& settings) {
+  AtomTableRuns runs;
+  const std::size_t heads = log_grid_points(k_min, k_max, settings.head_log_step, 4);
+  runs.full = log_grid_points(k_min, k_max, settings.tail_log_step, 6) + std::min(settings.checks, heads - 1);
+  runs.heads = heads;
+  runs.head_samples = head_samples_of(device, grid, k_min, settings);
+  return runs;
+}
 
 // ---------------------------------------------------------------- geometry of the table
 
 std::size_t AtomTable::tail_points() const {
-  const double span = std::log(data_.max_stiffness_n_per_m / data_.min_stiffness_n_per_m);
-  return std::max<std::size_t>(6, static_cast<std::size_t>(std::ceil(span / data_.settings.tail_log_step)) + 1);
+  return log_grid_points(data_.min_stiffness_n_per_m, data_.max_stiffness_n_per_m, data_.settings.tail_log_step, 6);
 }
 
 std::size_t AtomTable::head_points() const {
-  const double span = std::log(data_.max_stiffness_n_per_m / data_.min_stiffness_n_per_m);
-  return std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(span / data_.settings.head_log_step)) + 1);
+  return log_grid_points(data_.min_stiffness_n_per_m, data_.max_stiffness_n_per_m, data_.settings.head_log_step, 4);
 }
 
-double AtomTable::breakaway_time(double k) const {
-  return device_.sliding_friction_n() / (k * device_.model.belt_velocity_m_per_s);
-}
+double AtomTable::breakaway_time(double k) const { return breakaway_time_of(device_, k); }
 
 double AtomTable::equilibrium_displacement(double k) const { return device_.sliding_friction_n() / k; }
 
@@ -60,11 +82,7 @@ std::size_t AtomTable::blend_start(double k) const {
 }
 
 void AtomTable::finish() {
-  // The softest asperity breaks away last: its head is the longest, and every head is stored
-  // that long (on whole samples; a record shorter than that is all head).
-  const double head_end =
-      breakaway_time(data_.min_stiffness_n_per_m) * BREAKAWAY_MARGIN + data_.settings.head_after_breakaway_s;
-  tail_start_ = std::min(grid_.samples, static_cast<std::size_t>(std::ceil(std::max(0.0, head_end - grid_.start_s) / grid_.step_s)));
+  tail_start_ = head_samples_of(device_, grid_, data_.min_stiffness_n_per_m, data_.settings);
   blend_samples_ = static_cast<std::size_t>(std::ceil(data_.settings.blend_s / grid_.step_s));
   data_.head_samples = tail_start_;
 }

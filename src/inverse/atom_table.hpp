@@ -49,6 +49,17 @@ struct AtomTableData {
   double check_error = 0.0;                     //!< worst relative L2 error at the check points [-]
 };
 
+//! The forward runs a table over [k_min, k_max] makes, for the work estimate
+//! (inverse/inversion_work.hpp): over the whole grid (tails and checks) and over the heads
+//! only, and how many samples a head holds.
+struct AtomTableRuns {
+  std::size_t full = 0;
+  std::size_t heads = 0;
+  std::size_t head_samples = 0;
+};
+AtomTableRuns atom_table_runs(const KnownDevice& device, const RecordGrid& grid, double min_stiffness_n_per_m,
+                              double max_stiffness_n_per_m, const AtomTableSettings& settings = {});
+
 class AtomTable {
  public:
   //! Builds the table for stiffnesses in [k_min, k_max] on `grid` (costs ~1 s: one forward

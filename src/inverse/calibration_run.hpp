@@ -11,6 +11,7 @@
 #include "inverse/calibration_maps.hpp"
 #include "inverse/calibration_sample.hpp"
 #include "pipeline/study.hpp"
+#include "pipeline/work_estimate.hpp"
 
 namespace stengmc {
 
@@ -55,6 +56,10 @@ struct CalibrationOptions {
   bool show_progress = true;
   std::optional<std::size_t> records;        //!< override [inverse] calibration_records
   std::optional<std::uint64_t> seed;         //!< override [inverse] seed
+  //! The whole calibration's estimate (inverse/inversion_work.hpp) is refused over these
+  //! before anything runs, and each record's run is held to them as an ensemble's is.
+  WorkLimits limits{};
+  LimitNames limit_names{};                  //!< how the caller raises them (messages)
 };
 
 //! Runs the calibration of `device_study`; finished records go to `journal_path` (the caller

@@ -9,6 +9,7 @@
 #include "core/format.hpp"
 #include "tribology/domain_check.hpp"
 #include "tribology/model2.hpp"
+#include "tribology/time_grid.hpp"
 
 namespace stengmc {
 
@@ -52,27 +53,33 @@ ForwardAtom simulate_forward_atom(const KnownDevice& device, double stiffness_n_
 
 namespace stengmc {
 
-double smallest_valid_stiffness(const KnownDevice& device, double duration_s, double step_s, double lowest_n_per_m) {
+bool stays_below_length(const KnownDevice& device, double stiffness_n_per_m, const TimeGrid& grid) {
+  Asperity asperity = device.asperity;
+  asperity.stiffness_n_per_m = stiffness_n_per_m;
+  const Trajectory trajectory = solve_model2(asperity, device.model, grid);
+  return !first_domain_exit(*trajectory.motion, grid.times(), trajectory.x_m, asperity.element.length_m);
+}
+
+double smallest_valid_stiffness(const KnownDevice& device, double duration_s, double step_s, double lowest_n_per_m,
+                                double highest_n_per_m) {
+  // Only the tribology decides: a failure of the solvers themselves (a circuit that gives a
+  // non-finite voltage, an integrator out of steps) is the device's error, not "too soft",
+  // and propagates instead of sending the search to ever stiffer asperities.
   auto valid = [&](double k) {
     // The largest excursion comes in the first cycles after breakaway: 2 periods past it.
     const double breakaway = device.sliding_friction_n() / (k * device.model.belt_velocity_m_per_s);
     const double omega = device.angular_frequency(k);
     const double span = std::min(duration_s, breakaway * 1.5 + (omega > 0.0 ? 4.0 * PI / omega : duration_s));
-    const auto count = static_cast<std::size_t>(std::ceil(span / step_s)) + 1;
-    std::vector<double> times(count);
-    for (std::size_t m = 0; m < count; ++m) times[m] = static_cast<double>(m) * step_s;
-    try {
-      simulate_forward_atom(device, k, times);
-      return true;
-    } catch (const ModelError&) {
-      return false;
-    }
+    return stays_below_length(device, k, TimeGrid{step_s, static_cast<std::size_t>(std::ceil(span / step_s)) + 1});
   };
   if (valid(lowest_n_per_m)) return 0.0;
   // mu_s N / k < l at the upper end: breakaway before l (the oscillation adds ~v_b / omega).
   double high = std::max(lowest_n_per_m * 2.0, 4.0 * device.model.friction.static_coefficient *
                                                    device.asperity.normal_load_n / device.asperity.element.length_m);
-  while (!valid(high)) high *= 2.0;
+  while (!valid(high)) {
+    if (high >= highest_n_per_m) return INFINITY;
+    high *= 2.0;
+  }
   double low = lowest_n_per_m;
   while (high / low > 1.001) {
     const double mid = std::sqrt(low * high);

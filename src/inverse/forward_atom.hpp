@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "inverse/known_device.hpp"
+#include "tribology/time_grid.hpp"
 
 namespace stengmc {
 
@@ -28,10 +29,15 @@ ForwardAtom simulate_forward_atom(const KnownDevice& device, double stiffness_n_
 
 namespace stengmc {
 
+//! True when an asperity of stiffness k stays below its element's length l on `grid` (the
+//! tribology alone; the solvers' own failures throw ModelError).
+bool stays_below_length(const KnownDevice& device, double stiffness_n_per_m, const TimeGrid& grid);
+
 //! The smallest stiffness whose asperity stays below its element's length l for `duration_s`
 //! (softer ones are dragged further before breakaway, x_b ~ mu_s N / k): bisection in ln k on
-//! the forward model to 0.1 %, returned 2 % above the boundary [N/m]. 0 when even
-//! `lowest_n_per_m` stays valid.
-double smallest_valid_stiffness(const KnownDevice& device, double duration_s, double step_s, double lowest_n_per_m);
+//! the tribology to 0.1 %, returned 2 % above the boundary [N/m]. 0 when even
+//! `lowest_n_per_m` stays valid; infinity when even `highest_n_per_m` does not.
+double smallest_valid_stiffness(const KnownDevice& device, double duration_s, double step_s, double lowest_n_per_m,
+                                double highest_n_per_m);
 
 }  // namespace stengmc

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "pipeline/measurement_noise.hpp"
 
 namespace stengmc {
 
@@ -97,6 +98,11 @@ InversePrior read_inverse_prior(TomlTable& t) {
     p.second = read_range(t, "scale_n_per_m", p.second, true);
   }
   p.snr_db = read_range(t, "snr_db", p.snr_db, false);
+  // A calibration adds its records' noise as [noise] does: refused here, at this key, not
+  // when the calibration's own study (made from this table) reads it.
+  if (!(std::abs(p.snr_db[0]) <= MAX_SNR_DB && std::abs(p.snr_db[1]) <= MAX_SNR_DB))
+    t.fail("snr_db", "= [" + format_number(p.snr_db[0]) + ", " + format_number(p.snr_db[1]) + "] must lie in [" +
+                         format_number(-MAX_SNR_DB) + ", " + format_number(MAX_SNR_DB) + "] dB (as [noise] snr_db)");
   p.calibration_records = static_cast<std::size_t>(t.integer("calibration_records", static_cast<long long>(p.calibration_records), 50));
   if (p.calibration_records > 1'000'000) t.fail("calibration_records", "must be <= 1000000");
   p.seed = static_cast<std::uint64_t>(t.integer("seed", static_cast<long long>(p.seed), 0));

@@ -5,7 +5,9 @@
 #include <cstdio>
 
 #include "core/constants.hpp"
+#include "core/error.hpp"
 #include "core/format.hpp"
+#include "inverse/sample_statistics.hpp"
 
 namespace stengmc {
 
@@ -16,11 +18,26 @@ constexpr double DEFAULT_NAIVE_THRESHOLD = 10.0;
 // A residual whose power inside the lines' band exceeds the noise band's by this factor is
 // not white: ~200 bins each side give the ratio a standard deviation of ~0.1.
 constexpr double WHITENESS_LIMIT = 1.3;
+// A record's rms more than this factor above what the prior's largest count of atoms gives,
+// or below one atom's, is not of this device (or not in volts): a real record's noise at the
+// prior's lowest SNR adds a few per cent, a count outside the prior a few times.
+constexpr double AMPLITUDE_MARGIN = 10.0;
 
 std::string percent(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2g %%", 100.0 * x);
   return text;
+}
+
+//! Root mean square, scaled by the largest |v| first so that a record of 1e-200 V does not
+//! square to 0.
+double rms(std::span<const double> v) {
+  double largest = 0.0;
+  for (double x : v) largest = std::max(largest, std::abs(x));
+  if (largest == 0.0 || v.empty()) return 0.0;
+  double sum = 0.0;
+  for (double x : v) sum += (x / largest) * (x / largest);
+  return largest * std::sqrt(sum / static_cast<double>(v.size()));
 }
 
 std::string number(double x, const char* format = "%.4g") {
@@ -39,12 +56,21 @@ Inverter::Inverter(const InverseSetup& setup, const AtomTable& atoms, const Cali
       naive_(atoms.grid().samples, atoms.grid().sample_rate_hz(),
              atoms.device().angular_frequency(setup.prior.support().first) / (2.0 * PI),
              atoms.device().angular_frequency(setup.prior.support().second) / (2.0 * PI)),
-      model_(atoms) {}
+      model_(atoms) {
+  const auto [low, high] = setup.prior.support();
+  std::vector<double> atom(atoms.grid().samples);
+  model_.evaluate(std::vector<double>{std::sqrt(low * high)}, atom);
+  atom_rms_v_ = rms(atom);
+}
 
 Inversion Inverter::invert(const std::string& name, std::span<const double> voltage) {
   Inversion out;
   out.name = name;
-  out.raw = estimator_.estimate(voltage);
+  try {
+    out.raw = estimator_.estimate(voltage);
+  } catch (const ModelError& e) {
+    throw ModelError(name + ": " + e.what());  // which record, among many
+  }
   out.calibrated = calibrate_estimate(out.raw, maps_, setup_->prior);
   const double threshold = maps_ ? maps_->naive_threshold : DEFAULT_NAIVE_THRESHOLD;
   out.naive_count = naive_.count(voltage, std::vector<double>{threshold}).front();
@@ -83,6 +109,10 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
     out.verdict.push_back(std::to_string(blended) + " lines lie within one line width of another: resolution limits them. "
                           "Their number is sure (two coinciding asperities give twice one atom), their individual "
                           "stiffnesses less so (see each line's interval).");
+  if (k.size() >= 3 && !has_spread(k))
+    out.verdict.push_back("The " + std::to_string(k.size()) + " lines share one stiffness, " + number(sample_median(k)) +
+                          " N/m (sd of ln k " + number(sample_sd_log(k), "%.2g") +
+                          "): asperities of equal k, whose lines merge. No stiffness law is fitted to one stiffness.");
   out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
                         (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
   if (atoms_->data().check_error > 1e-2)
@@ -102,6 +132,22 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
   if (e.noise.bins > 0 && std::abs(e.residual_sigma_v / e.noise.sigma_v - 1.0) > 0.1)
     out.warnings.push_back("the fit's residual (" + number(e.residual_sigma_v, "%.3g") + " V rms) differs from the noise above the lines (" +
                            number(e.noise.sigma_v, "%.3g") + " V) by more than 10 %: the model does not fit to the noise");
+  // A record whose amplitude no count of this device's atoms can give: other units (mV, uV,
+  // an ADC's counts) or other known parameters. n atoms give at most n times one atom's rms
+  // (all in phase) and, with the plateau every atom shares, not much below one atom's.
+  const double record_rms = rms(voltage);
+  const double ratio = record_rms / atom_rms_v_;
+  const std::string amplitude = "the record's rms voltage (" + number(record_rms, "%.3g") + " V) is " + number(ratio, "%.2g") +
+                                " x what one sliding asperity of this device gives (" + number(atom_rms_v_, "%.3g") +
+                                " V rms, R sigma w v_b = " + number(device.voltage_scale_v(), "%.3g") + " V)";
+  if (ratio > AMPLITUDE_MARGIN * static_cast<double>(setup_->prior.count_max))
+    out.warnings.push_back(amplitude + ", more than the prior's " + std::to_string(setup_->prior.count_max) +
+                           " asperities could give: is the record in other units (mV, an ADC's counts), or are the known "
+                           "parameters (load_resistance_ohm, charge_density_c_per_m2, width_m, belt_velocity_m_per_s) "
+                           "not this device's? The answer above is not to be trusted");
+  else if (ratio < 1.0 / AMPLITUDE_MARGIN)
+    out.warnings.push_back(amplitude + ": nothing of this device slides in it, or it is in other units (kV?) or the known "
+                           "parameters are not this device's. The answer above is not to be trusted");
   const double snr_margin = 3.0;
   if (e.signal_to_noise_db < setup_->prior.snr_db[0] - snr_margin || e.signal_to_noise_db > setup_->prior.snr_db[1] + snr_margin)
     out.warnings.push_back("the signal-to-noise ratio (" + number(e.signal_to_noise_db, "%.1f") + " dB) lies outside the prior's " +

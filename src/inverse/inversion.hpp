@@ -41,6 +41,7 @@ class Inverter {
   RecordEstimator estimator_;
   NaiveCounter naive_;
   RecordModel model_;
+  double atom_rms_v_ = 0.0;  //!< rms of one atom at the prior's central stiffness over the grid [V]
 };
 
 //! The laws fitted to every record's identified stiffnesses together (records of one surface).

@@ -161,12 +161,12 @@ LineCandidate LineSearch::best_addition(std::span<const double> residual) {
   return best;
 }
 
-std::vector<OrderFit> LineSearch::search(std::size_t max_count) {
+std::vector<OrderFit> LineSearch::search(std::size_t max_count, std::size_t min_count) {
   std::vector<OrderFit> fits;
   fits.push_back(refine({}));
   std::size_t stop = max_count;  // the greedy count; fits go on extra_orders beyond it
   const double d = model_->atoms().device().damping_rate_per_s();
-  for (std::size_t n = 1; n <= max_count && n <= stop + options_.extra_orders; ++n) {
+  for (std::size_t n = 1; n <= max_count && (n <= stop + options_.extra_orders || n <= min_count); ++n) {
     const OrderFit& previous = fits.back();
     const LineCandidate best = best_addition(residual(previous.stiffness_n_per_m));
     std::vector<double> k = previous.stiffness_n_per_m;
@@ -183,8 +183,8 @@ std::vector<OrderFit> LineSearch::search(std::size_t max_count) {
     if (stop == max_count && gain < options_.stop_fraction * proposals_->atom_energy(best.stiffness_n_per_m))
       stop = n - 1;
   }
-  // The orders the posterior weighs, refitted in full.
-  for (std::size_t n = stop > 0 ? stop - 1 : 0; n < fits.size(); ++n)
+  // The orders the posterior weighs, refitted in full (none below min_count: it weighs none).
+  for (std::size_t n = std::max(stop > 0 ? stop - 1 : 0, min_count); n < fits.size(); ++n)
     if (n > 0) fits[n] = refine(fits[n].stiffness_n_per_m);
   return fits;
 }

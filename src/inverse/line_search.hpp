@@ -51,8 +51,9 @@ class LineSearch {
   OrderFit refine(std::vector<double> k, const std::vector<bool>& active = {}, bool normal_matrix = true);
 
   //! Fits for n = 0 (no atom) along the greedy path to its stop, then `extra_orders` more,
-  //! never beyond `max_count`: index n of the result holds the fit with n atoms.
-  std::vector<OrderFit> search(std::size_t max_count);
+  //! and on to `min_count` at least (a prior's smallest count: the posterior weighs no order
+  //! below it), never beyond `max_count`: index n of the result holds the fit with n atoms.
+  std::vector<OrderFit> search(std::size_t max_count, std::size_t min_count = 0);
 
   //! The record minus the model of `k`.
   std::vector<double> residual(std::span<const double> k) const;

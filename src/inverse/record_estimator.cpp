@@ -44,7 +44,7 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   out.noise = noise_.estimate(voltage);
 
   LineSearch search(model_, proposals_, voltage, options_);
-  const std::vector<OrderFit> fits = search.search(prior_.count_max + 1);
+  const std::vector<OrderFit> fits = search.search(prior_.count_max + 1, prior_.count_min);
   for (const OrderFit& f : fits) out.fit_residual_v2.push_back(f.residual_v2);
 
   // Noise for the evidence: the band's, else the residual of the largest fit; plus the model's
@@ -54,6 +54,9 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   double sigma2 = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v
                                      : fits.back().residual_v2 / static_cast<double>(samples - (fits.size() - 1));
   sigma2 += MODEL_RELATIVE_ACCURACY * MODEL_RELATIVE_ACCURACY * mean_square;
+  // A record far below the device's amplitude (one scaled by 1e-200) squares to 0.
+  const double floor_v = MIN_RELATIVE_NOISE * atoms_->device().voltage_scale_v();
+  sigma2 = std::max(sigma2, floor_v * floor_v);
   out.sigma_v = std::sqrt(sigma2);
   out.posterior = count_posterior(fits, out.sigma_v, prior_, density_);
   if (out.posterior.counts.empty())
@@ -76,6 +79,13 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   Eigen::MatrixXd h = best.normal_matrix / sigma2;
   h.diagonal().array() += 1.0 / (spread * spread);
   const Eigen::MatrixXd covariance = out.count > 0 ? Eigen::MatrixXd(h.inverse()) : Eigen::MatrixXd();
+  // Said here, not by a writer refusing a NaN later: a fit whose atoms change ~1e16 times
+  // more with ln k than the noise resolves leaves H singular to rounding.
+  if (!covariance.allFinite() || !std::all_of(best.stiffness_n_per_m.begin(), best.stiffness_n_per_m.end(),
+                                              [](double k) { return std::isfinite(k); }))
+    throw ModelError("the fit of " + std::to_string(out.count) + " atoms to the record is not finite (its stiffnesses or "
+                     "their errors): the record does not determine them; the known device is likely outside the "
+                     "regime the atoms model (a belt-carried stick, then a free oscillation)");
   const KnownDevice& device = atoms_->device();
   for (std::size_t i = 0; i < out.count; ++i) {
     EstimatedLine line;

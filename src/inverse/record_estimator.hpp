@@ -72,4 +72,10 @@ class RecordEstimator {
 //! record does not get a zero-width answer from model error alone.
 inline constexpr double MODEL_RELATIVE_ACCURACY = 1e-3;
 
+//! The smallest noise level the evidence uses, relative to one atom's amplitude R sigma w v_b
+//! [-]. A record scaled far below the device's amplitude (by 1e-200) squares to a noise of 0,
+//! and the evidence then divides by it. 1e-12 is far below the atoms' own accuracy (~1e-4)
+//! and any real record's noise, so it binds on such records only.
+inline constexpr double MIN_RELATIVE_NOISE = 1e-12;
+
 }  // namespace stengmc

@@ -1,9 +1,11 @@
 #include "inverse/record_input.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "spectral/analysed_voltage.hpp"
 
 namespace stengmc {
 
@@ -18,6 +20,10 @@ RecordGrid checked_record_grid(std::span<const double> t, std::span<const double
     if (!std::isfinite(v[m]))
       throw InputError(source + ": voltage of sample " + std::to_string(m + 1) + " (t = " + format_number(t[m]) +
                        " s) is not a finite number (NaN or Inf)");
+    if (!(std::abs(v[m]) <= MAX_ANALYSED_VOLTAGE_V))
+      throw InputError(source + ": voltage of sample " + std::to_string(m + 1) + " (t = " + format_number(t[m]) + " s) = " +
+                       format_number(v[m]) + " V is beyond what the analysis can square and sum (|V| <= " +
+                       format_number(MAX_ANALYSED_VOLTAGE_V) + " V)");
   }
   if (t[0] < 0.0)
     throw InputError(source + ": the first time is " + format_number(t[0]) +
@@ -37,6 +43,13 @@ RecordGrid checked_record_grid(std::span<const double> t, std::span<const double
                        " s; inverse estimation needs a uniform grid (resample the record first)");
   }
   return {t.front(), step, t.size()};
+}
+
+void check_record_varies(std::span<const double> v, const std::string& source) {
+  if (!v.empty() && std::all_of(v.begin(), v.end(), [&](double x) { return x == v[0]; }))
+    throw InputError(source + ": the voltage is " + format_number(v[0] == 0.0 ? 0.0 : v[0]) +
+                     " V at every sample: a record of a sliding device varies, so there is nothing to invert (is it "
+                     "the right column, channel or file?)");
 }
 
 }  // namespace stengmc

@@ -18,4 +18,10 @@ inline constexpr std::size_t MIN_RECORD_SAMPLES = 64;
 //! @throws InputError naming `source` and the offending sample.
 RecordGrid checked_record_grid(std::span<const double> times_s, std::span<const double> voltage_v, const std::string& source);
 
+//! A record whose voltage is the same at every sample (all zero: an empty channel, the wrong
+//! column) holds no line to fit, and its noise level is 0: refused once the device and grid
+//! are checked, before anything is computed.
+//! @throws InputError naming `source` and the value.
+void check_record_varies(std::span<const double> voltage_v, const std::string& source);
+
 }  // namespace stengmc

@@ -11,7 +11,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/constants.hpp"
 #include "core/error.hpp"
+#include "inverse/sample_statistics.hpp"
 
 namespace stengmc {
 
@@ -19,16 +21,54 @@ namespace {
 
 constexpr double Z90 = 1.6448536269514722;  // two-sided 90 %
 
-double log_likelihood(std::span<const double> k, StiffnessFamily family, double p1, double p2) {
-  double sum = 0.0;
-  for (double x : k) {
-    switch (family) {
-      case StiffnessFamily::lognormal: sum += std::log(boost::math::pdf(boost::math::lognormal(std::log(p1), p2), x)); break;
-      case StiffnessFamily::gamma: sum += std::log(boost::math::pdf(boost::math::gamma_distribution<>(p1, p2), x)); break;
-      case StiffnessFamily::weibull: sum += std::log(boost::math::pdf(boost::math::weibull(p1, p2), x)); break;
+//! ln of the family's density at x, in closed form. Not ln(boost::math::pdf): the density of
+//! a narrow law underflows to 0 a few widths out (ln 0 = -inf in the AIC), and Boost's gamma
+//! density gives up (its tgamma series) beyond a shape of ~1e11.
+double log_density(double x, StiffnessFamily family, double p1, double p2) {
+  switch (family) {
+    case StiffnessFamily::lognormal: {
+      const double z = (std::log(x) - std::log(p1)) / p2;
+      return -std::log(x) - std::log(p2) - 0.5 * std::log(2.0 * PI) - 0.5 * z * z;
+    }
+    case StiffnessFamily::gamma:  // shape p1, scale p2
+      return (p1 - 1.0) * std::log(x) - x / p2 - p1 * std::log(p2) - std::lgamma(p1);
+    case StiffnessFamily::weibull: {  // shape p1, scale p2
+      const double u = std::log(x / p2);
+      return std::log(p1 / p2) + (p1 - 1.0) * u - std::exp(p1 * u);
     }
   }
+  throw Error("unknown stiffness family");
+}
+
+double log_likelihood(std::span<const double> k, StiffnessFamily family, double p1, double p2) {
+  double sum = 0.0;
+  for (double x : k) sum += log_density(x, family, p1, p2);
   return sum;
+}
+
+//! The Weibull shape's profile equation sum w ln k / sum w - 1/c - mean(ln k) = 0, w = k^c
+//! (increasing in c), bracketed from the data: below, -1/c wins; above, the weights pile
+//! on the largest k and the left side tends to ln max(k) - mean(ln k) > 0 (has_spread holds).
+//! Its root is ~1 / sd(ln k) for a sample normal in ln k, more for a skewed one: the bracket
+//! that stopped at 1.6e4 failed for merged lines; doubling from 1 reaches any root.
+double weibull_shape(std::span<const double> k, double mean_log) {
+  const double largest = *std::max_element(k.begin(), k.end());
+  auto profile = [&](double c) {
+    double num = 0.0, den = 0.0;
+    for (double x : k) {
+      const double u = std::log(x / largest);  // <= 0: w <= 1, no overflow of k^c
+      const double w = std::exp(c * u);
+      num += w * u;
+      den += w;
+    }
+    return num / den + std::log(largest) - 1.0 / c - mean_log;
+  };
+  double low = 1.0, high = 1.0;
+  while (profile(low) > 0.0) low /= 2.0;
+  while (profile(high) < 0.0) high *= 2.0;
+  boost::uintmax_t iterations = 200;
+  const auto root = boost::math::tools::toms748_solve(profile, low, high, boost::math::tools::eps_tolerance<double>(50), iterations);
+  return 0.5 * (root.first + root.second);
 }
 
 //! MLE parameters of the family.
@@ -59,30 +99,22 @@ std::array<double, 2> maximum_likelihood(std::span<const double> k, StiffnessFam
       return {a, mean / a};
     }
     case StiffnessFamily::weibull: {
-      auto profile = [&](double c) {
-        double num = 0.0, den = 0.0;
-        const double scale = *std::max_element(k.begin(), k.end());  // against overflow of k^c
-        for (double x : k) {
-          const double w = std::pow(x / scale, c);
-          num += w * std::log(x);
-          den += w;
-        }
-        return num / den - 1.0 / c - mean_log;
-      };
-      double low = 1e-3, high = 1.0;
-      while (profile(high) < 0.0 && high < 1e4) high *= 2.0;
-      boost::uintmax_t iterations = 200;
-      const auto root = boost::math::tools::toms748_solve(profile, low, high, boost::math::tools::eps_tolerance<double>(50), iterations);
-      const double c = 0.5 * (root.first + root.second);
+      const double c = weibull_shape(k, mean_log);
+      // scale = (mean k^c)^(1/c), taken relative to the largest k against overflow of k^c.
+      const double largest = *std::max_element(k.begin(), k.end());
       double sum = 0.0;
-      for (double x : k) sum += std::pow(x, c);
-      return {c, std::pow(sum / n, 1.0 / c)};
+      for (double x : k) sum += std::exp(c * std::log(x / largest));
+      return {c, largest * std::exp(std::log(sum / n) / c)};
     }
   }
   throw Error("unknown stiffness family");
 }
 
 }  // namespace
+
+bool has_spread(std::span<const double> k) {
+  return sample_sd_log(std::vector<double>(k.begin(), k.end())) >= MIN_LAW_SD_LOG;
+}
 
 LawFit fit_stiffness_law(std::span<const double> k, StiffnessFamily family) {
   LawFit fit;
@@ -93,6 +125,7 @@ LawFit fit_stiffness_law(std::span<const double> k, StiffnessFamily family) {
   if (distinct < 3) return fit;
   for (double x : k)
     if (!(x > 0.0) || !std::isfinite(x)) throw Error("fit_stiffness_law: stiffnesses must be finite and > 0");
+  if (!has_spread(k)) return fit;
   fit.parameters = maximum_likelihood(k, family);
   fit.log_likelihood = log_likelihood(k, family, fit.parameters[0], fit.parameters[1]);
   fit.aic = 4.0 - 2.0 * fit.log_likelihood;

@@ -166,7 +166,10 @@ StoredBank read_identity_and_atoms(const std::string& path, const Hdf5Reader& f)
   const std::string type = f.string_attribute("/", "file_type");
   if (type != FILE_TYPE)
     throw InputError(path + ": not a calibration bank (file_type \"" + type + "\"; make one with stengmc calibrate)");
+  check_format_version(f, path, RUN_FILE_FORMAT_VERSION);
   const auto version = f.integer_attribute("/", "bank_format_version");
+  if (version && *version < 1)
+    throw InputError(path + ": bank_format_version " + std::to_string(*version) + " is not a valid version (>= 1); damaged file?");
   if (!version || *version > FORMAT_VERSION)
     throw InputError(path + ": calibration bank format " + (version ? std::to_string(*version) : std::string("?")) +
                      " is not one this stengmc reads (" + std::to_string(FORMAT_VERSION) + "); make the bank again");

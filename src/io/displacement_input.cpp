@@ -8,6 +8,7 @@
 #include "io/guarded_read.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
+#include "core/text_excerpt.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc {
@@ -77,7 +78,8 @@ DisplacementInput read_displacement_csv(const std::string& path, const StengElem
       std::string why;
       const auto value = parse_number(text, &why);
       if (!value)
-        throw InputError(path + ":" + std::to_string(line_number) + ": column '" + trim_blanks(header[k]) + "' = '" + text +
+        throw InputError(path + ":" + std::to_string(line_number) + ": column '" + text_excerpt(trim_blanks(header[k])) +
+                         "' = '" + text_excerpt(text) +
                          "' " + (why == "is not a number" ? "is not a finite number" : why));
       (k == 0 ? input.times_s : input.x_m[k - 1]).push_back(*value);
     }

@@ -4,6 +4,9 @@
 
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
+#include "core/input_file.hpp"
+#include "io/guarded_read.hpp"
+#include "io/run_file.hpp"
 #include "io/signal_input.hpp"
 
 namespace stengmc {
@@ -19,16 +22,11 @@ NamedRecord trace_record(const Hdf5Reader& file, const std::string& path, const 
   return r;
 }
 
-}  // namespace
-
-std::vector<NamedRecord> read_inverse_records(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
-  const std::string extension = std::filesystem::path(path).extension().string();
-  if (extension == ".csv" || extension == ".CSV") {
-    SignalInput s = read_signal_csv(path);
-    return {{path, std::move(s.times_s), std::move(s.voltage_v)}};
-  }
+//! The records of a run, circuit or ensemble file (or of another program's file with /time
+//! and /circuit/voltage); numbers of any HDF5 type (integers, float32) read as doubles.
+std::vector<NamedRecord> read_hdf5_records(const std::string& path) {
   Hdf5Reader file(path);
+  check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
   if (file.string_attribute("/", "file_type") == "stengmc-ensemble") {
     // Traces by realisation id, in /realisations order (sweeps: by grid point).
     const std::vector<double> ids = file.vector("/realisations/realisation");
@@ -53,6 +51,22 @@ std::vector<NamedRecord> read_inverse_records(const std::string& path) {
   r.times_s = file.vector("/time");
   r.times_s.resize(std::min(r.times_s.size(), r.voltage_v.size()));  // an invalid run's circuit stops early
   return {std::move(r)};
+}
+
+}  // namespace
+
+std::vector<NamedRecord> read_inverse_records(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension == ".csv" || extension == ".CSV") {
+    SignalInput s = read_signal_csv(path);
+    return {{path, std::move(s.times_s), std::move(s.voltage_v)}};
+  }
+  // As every HDF5 input: a regular file, read first by a child process that a damaged file
+  // may crash or hang instead of this one (io/guarded_read.hpp).
+  check_input_file(path, "the record file");
+  read_in_child_first(path, [&] { (void)read_hdf5_records(path); });
+  return read_hdf5_records(path);
 }
 
 }  // namespace stengmc

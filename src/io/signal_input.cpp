@@ -9,18 +9,18 @@
 #include "io/guarded_read.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
+#include "core/text_excerpt.hpp"
 #include "io/run_file.hpp"
+#include "spectral/analysed_voltage.hpp"
 
 namespace stengmc {
 
 namespace {
 
-constexpr double MAX_VOLTAGE_V = 1e100;
-
 //! The analysis squares and sums voltages (power, noise floor, ESPRIT): keep those finite.
 void check_voltages(const SignalInput& input, const std::string& path) {
   for (std::size_t j = 0; j < input.voltage_v.size(); ++j)
-    if (!(std::abs(input.voltage_v[j]) <= MAX_VOLTAGE_V))
+    if (!(std::abs(input.voltage_v[j]) <= MAX_ANALYSED_VOLTAGE_V))
       throw InputError(path + ": /circuit/voltage sample " + std::to_string(j) + " = " + format_number(input.voltage_v[j]) +
                        " V is beyond what the analysis can square and sum (|V| <= 1e100 V)");
 }
@@ -82,9 +82,10 @@ SignalInput read_signal_csv(const std::string& path) {
     if (std::getline(fields, extra, ',') || v_text.empty())
       throw InputError(path + ":" + std::to_string(number) + ": expected two fields `t,V`");
     const auto t = parse_number(trim_blanks(t_text)), v = parse_number(trim_blanks(v_text));
-    if (!t || !v) throw InputError(path + ":" + std::to_string(number) + ": '" + line + "' is not two finite numbers");
-    if (std::abs(*v) > MAX_VOLTAGE_V)
-      throw InputError(path + ":" + std::to_string(number) + ": V = " + trim_blanks(v_text) + " is beyond what the analysis can square "
+    if (!t || !v) throw InputError(path + ":" + std::to_string(number) + ": '" + text_excerpt(line) + "' is not two finite numbers");
+    if (std::abs(*v) > MAX_ANALYSED_VOLTAGE_V)
+      throw InputError(path + ":" + std::to_string(number) + ": V = " + text_excerpt(trim_blanks(v_text)) +
+                       " is beyond what the analysis can square "
                        "and sum (|V| <= 1e100 V)");
     input.times_s.push_back(*t);
     input.voltage_v.push_back(*v);

@@ -67,8 +67,9 @@ NoiseSettings read_noise_settings(TomlTable& t) {
   NoiseSettings s;
   if (!t.has("snr_db")) t.fail("snr_db", "is missing: the signal-to-noise ratio of the noise added to V [dB]");
   s.snr_db = t.number("snr_db", 0.0);
-  if (!std::isfinite(s.snr_db) || std::abs(s.snr_db) > 300.0)
-    t.fail("snr_db", "= " + format_number(s.snr_db) + " must lie in [-300, 300] dB");
+  if (!std::isfinite(s.snr_db) || std::abs(s.snr_db) > MAX_SNR_DB)
+    t.fail("snr_db", "= " + format_number(s.snr_db) + " must lie in [" + format_number(-MAX_SNR_DB) + ", " +
+                         format_number(MAX_SNR_DB) + "] dB");
   s.coloured_share = t.number("coloured_share", 0.0);
   if (!(s.coloured_share >= 0.0 && s.coloured_share <= 1.0))
     t.fail("coloured_share", "= " + format_number(s.coloured_share) + " must lie in [0, 1] (the share of the noise power in the 1/f^alpha part)");

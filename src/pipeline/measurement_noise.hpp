@@ -10,6 +10,10 @@
 
 namespace stengmc {
 
+//! The signal-to-noise ratios [noise] accepts lie in [-MAX_SNR_DB, MAX_SNR_DB] [dB]: 10^30
+//! either way keeps sigma^2 = P / 10^(snr/10) a normal double for any voltage read.
+inline constexpr double MAX_SNR_DB = 300.0;
+
 //! The study's [noise] table.
 struct NoiseSettings {
   //! Signal-to-noise ratio of all the noise, white and coloured: sigma^2 = P / 10^(snr/10)

@@ -27,9 +27,8 @@ void draw_population(Study& study) {
                      " summits drawn, " + seed + "): nothing to simulate");
 }
 
-//! Sampling below twice the highest natural frequency aliases the asperity lines. For a
-//! fixed list that is the file's fault (InputError at sample_rate_hz); for a random
-//! surface, the realisation's (ModelError, see draw_population).
+}  // namespace
+
 void check_sample_rate(const Study& study, TomlTable* root) {
   double highest_hz = 0.0;
   std::size_t which = 0;
@@ -50,8 +49,6 @@ void check_sample_rate(const Study& study, TomlTable* root) {
   if (root) root->fail("sample_rate_hz", what);
   throw InputError(study.file + ": sample_rate_hz " + what);
 }
-
-}  // namespace
 
 void draw_realisation(Study& study, std::uint64_t realisation, TomlTable* root) {
   study.realisation = realisation;

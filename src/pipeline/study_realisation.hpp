@@ -20,4 +20,11 @@ Study study_for_realisation(const Study& base, std::uint64_t realisation);
 //! @throws ModelError when the realisation has nothing to simulate or aliases its lines.
 void draw_realisation(Study& study, std::uint64_t realisation, TomlTable* root);
 
+//! Sampling below twice the highest natural frequency sqrt(k/m) / 2 pi of the study's
+//! asperities aliases their lines. For a fixed list that is the file's fault (InputError, at
+//! sample_rate_hz's line when the study's `root` table is given); for a random surface, the
+//! realisation's (ModelError). The inverse commands apply it to the runs they make of a
+//! known device (inverse/device_checks.hpp).
+void check_sample_rate(const Study& study, TomlTable* root = nullptr);
+
 }  // namespace stengmc

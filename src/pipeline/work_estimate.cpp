@@ -236,7 +236,7 @@ WorkEstimate estimate_surface(const RandomSurface& surface, double realisations)
   return e;
 }
 
-std::string exceeded_limit(const WorkEstimate& e, const WorkLimits& limits) {
+std::string exceeded_limit(const WorkEstimate& e, const WorkLimits& limits, const LimitNames& names) {
   const auto over = [&](double amount, double limit, bool bytes, const std::vector<WorkPart>& parts,
                         const std::string& option) {
     std::string text = "needs ~" + describe(amount, bytes) + (bytes ? " of memory" : "") + ", " +
@@ -245,13 +245,13 @@ std::string exceeded_limit(const WorkEstimate& e, const WorkLimits& limits) {
     return text + ". Reduce it, or raise the limit with " + option;
   };
   // !(a <= b) also catches NaN and inf from absurd inputs.
-  if (!(e.memory_bytes <= limits.memory_bytes)) return over(e.memory_bytes, limits.memory_bytes, true, e.memory, "--max-memory-gb");
-  if (!(e.steps <= limits.steps)) return over(e.steps, limits.steps, false, e.work, "--max-steps");
+  if (!(e.memory_bytes <= limits.memory_bytes)) return over(e.memory_bytes, limits.memory_bytes, true, e.memory, names.memory);
+  if (!(e.steps <= limits.steps)) return over(e.steps, limits.steps, false, e.work, names.steps);
   return "";
 }
 
-void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what) {
-  const std::string exceeded = exceeded_limit(estimate, limits);
+void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what, const LimitNames& names) {
+  const std::string exceeded = exceeded_limit(estimate, limits, names);
   if (!exceeded.empty()) throw InputError(what + " " + exceeded);
 }
 

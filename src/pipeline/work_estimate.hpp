@@ -129,11 +129,19 @@ double summits_upper_bound(const RandomSurface& surface);
 //! memory limit, and CPU time from the estimate of its steps (circuit/ngspice_library.hpp).
 ChildBudget ngspice_budget(const Study& study, const WorkLimits& limits);
 
+//! What raises each limit where the limits were given: the command line's options, or a
+//! Python function's keyword arguments (max_memory_gb=, max_steps=).
+struct LimitNames {
+  std::string memory = "--max-memory-gb";
+  std::string steps = "--max-steps";
+};
+
 //! "" when `estimate` is within `limits`; else what exceeds: the quantity, its estimate,
 //! the limit, the factor, the largest contribution and how to raise the limit.
-std::string exceeded_limit(const WorkEstimate& estimate, const WorkLimits& limits);
+std::string exceeded_limit(const WorkEstimate& estimate, const WorkLimits& limits, const LimitNames& names = {});
 
 //! Throws InputError "<what>: <exceeded_limit>" when the estimate is over a limit.
-void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what);
+void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& what,
+                const LimitNames& names = {});
 
 }  // namespace stengmc

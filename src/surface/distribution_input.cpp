@@ -9,6 +9,7 @@
 #include "core/format.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/text_excerpt.hpp"
 #include "core/toml_reader.hpp"
 #include "surface/distribution.hpp"
 
@@ -66,7 +67,7 @@ std::vector<Distribution::Bin> Distribution::read_histogram(const std::filesyste
     const bool header = first_content && line.find("lower") != std::string::npos;
     first_content = false;
     if (header) continue;
-    if (!numeric) throw InputError(where + "expected three numbers 'lower,upper,weight', got '" + line + "'");
+    if (!numeric) throw InputError(where + "expected three numbers 'lower,upper,weight', got '" + text_excerpt(line) + "'");
     if (!(b.upper > b.lower)) throw InputError(where + "upper = " + format_number(b.upper) + " must be > lower = " + format_number(b.lower));
     if (!std::isfinite(b.upper - b.lower))
       throw InputError(where + "the bin [" + format_number(b.lower) + ", " + format_number(b.upper) +

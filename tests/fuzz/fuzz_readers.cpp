@@ -1,11 +1,13 @@
 // A deterministic mutation fuzzer of the readers a user's files go through (README:
 // "Rejected inputs and faults"): study files (read, estimated and run within tight
 // limits), surface files (read and sampled), CSV files (displacements, signals,
-// histograms), HDF5 files (run files read by `circuit`, `spectrum` and `plot`) and load
-// netlists (`[circuit] netlist`: read, checked against the policy, includes inlined; every
-// 50th accepted one also run by ngspice in its child process).
+// histograms), HDF5 files (run files read by `circuit`, `spectrum` and `plot`), the
+// records `invert` reads (CSV `t,V`, run and ensemble files, read and checked as invert
+// checks them before it computes anything) and load netlists (`[circuit] netlist`: read,
+// checked against the policy, includes inlined; every 50th accepted one also run by ngspice
+// in its child process).
 //
-//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5 | netlist
+//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5 | record | netlist
 //
 // Each execution takes a valid seed input (the repository's studies and surfaces, CSV and
 // HDF5 files made here), mutates it with a generator seeded by (SEED, execution) — bit
@@ -37,7 +39,9 @@
 #include "circuit/netlist_load.hpp"
 #include "circuit/ngspice_library.hpp"
 #include "core/error.hpp"
+#include "inverse/record_input.hpp"
 #include "io/displacement_input.hpp"
+#include "io/inverse_signals.hpp"
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
@@ -192,11 +196,12 @@ std::string csv_of(const std::string& header, int rows, double (*value)(int, int
   return out.str();
 }
 
-//! A small run file of each model, written by this program, as the HDF5 seeds.
-std::vector<std::string> hdf5_seeds(const fs::path& scratch) {
+//! A small run file of each model, written by this program, as the HDF5 seeds: `duration`
+//! at 50 MHz.
+std::vector<std::string> hdf5_seeds(const fs::path& scratch, const std::string& duration = "1e-6") {
   std::vector<std::string> seeds;
   for (const char* model : {"kind = \"model1\"", "kind = \"model2\"\nbelt_velocity_m_per_s = 10"}) {
-    const std::string text = std::string("duration_s = 1e-6\nsample_rate_hz = 50e6\n[model]\n") + model +
+    const std::string text = "duration_s = " + duration + "\nsample_rate_hz = 50e6\n[model]\n" + model +
                              "\n[surface]\n[surface.defaults]\nlength_m = 50e-6\n[[surface.asperity]]\n"
                              "stiffness_n_per_m = 75\n[[surface.asperity]]\nstiffness_n_per_m = 155\n"
                              "[spectrum]\nhigh_resolution = false\n";
@@ -207,6 +212,27 @@ std::vector<std::string> hdf5_seeds(const fs::path& scratch) {
     seeds.push_back(read_file(file));
   }
   return seeds;
+}
+
+//! A record file of another program: /time as doubles, /circuit/voltage as int64 (in uV).
+std::string integer_voltage_record(const fs::path& scratch) {
+  const fs::path file = scratch / "integer.h5";
+  {
+    H5::H5File out(file.string(), H5F_ACC_TRUNC);
+    const hsize_t n = 100;
+    std::vector<double> t(n);
+    std::vector<std::int64_t> v(n);
+    for (hsize_t j = 0; j < n; ++j) {
+      const double x = static_cast<double>(j);
+      t[j] = x * 1e-8;
+      v[j] = static_cast<std::int64_t>(3000.0 * std::sin(0.7 * x));
+    }
+    const H5::DataSpace space(1, &n);
+    out.createDataSet("/time", H5::PredType::NATIVE_DOUBLE, space).write(t.data(), H5::PredType::NATIVE_DOUBLE);
+    out.createGroup("/circuit");
+    out.createDataSet("/circuit/voltage", H5::PredType::STD_I64LE, space).write(v.data(), H5::PredType::NATIVE_INT64);
+  }
+  return read_file(file);
 }
 
 Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::path& scratch) {
@@ -248,9 +274,18 @@ Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::p
                        "A1 %v(steng) f\n.model f filesource(file=\"/dev/zero\")\n.options reltol=1\n");
     write_file(scratch / "parts.cir", "Rpart steng 0 1e9\n");
     write_file(scratch / "models.lib", ".lib fast\n.model dfast d(is=1e-15 rs=10 cjo=0)\n.endl\n");
+  } else if (reader == "record") {
+    // Records as invert takes them: a CSV `t,V` (100 MHz, 64 samples and more) and run files;
+    // one with its voltage stored as 64-bit integers, as another program may write it.
+    c.inputs.push_back(csv_of("t,V", 80, [](int j, int) { return 1e-3 * std::sin(0.7 * j) + 1e-4 * std::cos(2.3 * j); }, 2));
+    for (std::string& seed : hdf5_seeds(scratch, "2e-6")) c.inputs.push_back(std::move(seed));  // 101 samples
+    c.inputs.push_back(integer_voltage_record(scratch));
   }
   return c;
 }
+
+//! HDF5 files start with this signature (the HDF5 format specification, superblock).
+bool is_hdf5(const std::string& bytes) { return bytes.rfind("\x89HDF", 0) == 0; }
 
 // ---------------------------------------------------------------- the readers
 
@@ -350,11 +385,22 @@ void read_netlist_input(const fs::path& file, std::size_t& accepted_so_far) {
   require_finite(result.time_s, "ngspice's times");
 }
 
+//! What `invert` does with a record file before it computes anything: read it, then check
+//! each record's grid, values and variation.
+void read_record_input(const fs::path& file) {
+  for (const NamedRecord& r : read_inverse_records(file.string())) {
+    (void)checked_record_grid(r.times_s, r.voltage_v, r.name);
+    check_record_varies(r.voltage_v, r.name);
+    require_finite(r.times_s, "the times");
+    require_finite(r.voltage_v, "the voltages");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5|netlist RUNS [SEED]\n");
+    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5|record|netlist RUNS [SEED]\n");
     return 2;
   }
   const std::string reader = argv[1];
@@ -370,16 +416,18 @@ int main(int argc, char** argv) {
 
   const Corpus corpus = corpus_for(reader, source, scratch);
   if (corpus.inputs.empty()) {
-    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5, netlist)\n", reader.c_str());
+    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5, record, netlist)\n", reader.c_str());
     return 2;
   }
   const std::string extension = reader == "hdf5" ? ".h5" : reader == "csv" ? ".csv" : reader == "netlist" ? ".cir" : ".toml";
-  const fs::path input = scratch / ("input" + extension);
   std::size_t accepted = 0, refused = 0, model_errors = 0, found = 0, netlists_accepted = 0;
   for (std::size_t i = 0; i < runs; ++i) {
     std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + i);
     const std::string& base = corpus.inputs[rng() % corpus.inputs.size()];
-    const std::string bytes = mutate(base, rng, corpus.text, corpus.inputs);
+    // A record is a CSV or an HDF5 file, told apart by its name as invert tells them apart.
+    const bool binary = !corpus.text || is_hdf5(base);
+    const std::string bytes = mutate(base, rng, !binary, corpus.inputs);
+    const fs::path input = scratch / ("input" + (reader == "record" ? std::string(binary ? ".h5" : ".csv") : extension));
     write_file(input, bytes);
     write_file(findings / ("current." + reader), bytes);  // what a crash leaves behind
     // A histogram a mutated surface names is this same CSV seed (surfaces/*.toml name none).
@@ -393,6 +441,7 @@ int main(int argc, char** argv) {
       else if (reader == "surface") read_surface_input(input);
       else if (reader == "csv") read_csv_input(input, i);
       else if (reader == "netlist") read_netlist_input(input, netlists_accepted);
+      else if (reader == "record") read_record_input(input);
       else read_hdf5_input(input, i);
       ++accepted;
     } catch (const InputError&) {

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   InversePrior prior;  // n 1..16, lognormal median U(40, 120), sigma_log U(0.2, 0.6), SNR U(20, 40)
   const auto [k_low, k_high] = prior.support();
   const auto t0 = std::chrono::steady_clock::now();
-  const double k_valid = smallest_valid_stiffness(device, grid.duration_s(), grid.step_s, k_low / 1.25);
+  const double k_valid = smallest_valid_stiffness(device, grid.duration_s(), grid.step_s, k_low / 1.25, k_high * 1.25);
   const AtomTable atoms(device, grid, std::max(k_low / 1.25, k_valid), k_high * 1.25);
   std::printf("atom table [%.3g, %.3g] N/m built in %.2f s, check error %.3g\n", atoms.min_stiffness(), atoms.max_stiffness(),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), atoms.data().check_error);

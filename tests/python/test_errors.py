@@ -72,3 +72,40 @@ def test_invert_refuses_a_two_dimensional_record(stengmc):
     with pytest.raises(stengmc.InputError, match="my_record: voltage_v: expected a one-dimensional array"):
         stengmc.invert(np.zeros((2, 100)), known=source("studies/inverse/demo_device.toml"),
                        time_s=np.arange(100) * 1e-8, name="my_record")
+
+
+DEMO = "studies/inverse/demo_device.toml"
+
+
+def demo_record():
+    data = np.loadtxt(source("studies/inverse/demo_record.csv"), delimiter=",", skiprows=1)
+    return data[:, 0], data[:, 1]
+
+
+def test_invert_takes_the_command_lines_limits_as_keyword_arguments(stengmc):
+    # Python's invert had no limits: invert(np.zeros(10**8)) reached 11.5 GB. It takes
+    # `stengmc invert`'s --max-memory-gb / --max-steps as max_memory_gb= / max_steps=, with
+    # the same defaults, and a refusal says which argument raises the limit.
+    times, volts = demo_record()
+    with pytest.raises(stengmc.InputError, match=r"needs ~.* GB of memory, .* x the limit of 0\.01 GB.*raise the limit with max_memory_gb"):
+        stengmc.invert(volts, known=source(DEMO), time_s=times, max_memory_gb=0.01)
+    with pytest.raises(stengmc.InputError, match=r"steps, .* x the limit of 1000 steps.*raise the limit with max_steps"):
+        stengmc.invert(volts, known=source(DEMO), time_s=times, max_steps=1e3)
+    for argument in ("max_memory_gb", "max_steps"):
+        for value in (0, -1, float("nan"), float("inf")):
+            with pytest.raises(ValueError, match=f"{argument} = .* must be a finite number > 0"):
+                stengmc.invert(volts, known=source(DEMO), time_s=times, **{argument: value})
+
+
+def test_invert_names_a_sample_rate_that_is_not_one(stengmc):
+    # sample_rate_hz=0 was reported as bad times (inf and nan).
+    _, volts = demo_record()
+    for rate in (0, -1e8, float("nan")):
+        with pytest.raises(stengmc.InputError, match="my_record: sample_rate_hz = .* must be a finite number > 0"):
+            stengmc.invert(volts, known=source(DEMO), sample_rate_hz=rate, name="my_record")
+
+
+def test_invert_refuses_a_constant_record_naming_it(stengmc):
+    # It stopped with the internal "count_posterior: the noise level must be > 0".
+    with pytest.raises(stengmc.InputError, match="my_record: the voltage is 0 V at every sample"):
+        stengmc.invert(np.zeros(5001), known=source(DEMO), sample_rate_hz=100e6, name="my_record")
