@@ -19,6 +19,7 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::count: return "count";
     case StreamKind::bootstrap: return "bootstrap";
     case StreamKind::draws: return "draws";
+    case StreamKind::onsets: return "onsets";
   }
   return "unknown";
 }

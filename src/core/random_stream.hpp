@@ -33,6 +33,7 @@ enum class StreamKind : std::uint64_t {
   count = 6,        //!< the (Poisson) number of asperities
   bootstrap = 7,    //!< bootstrap resampling of ensemble statistics (stats/ensemble_statistics)
   draws = 8,        //!< per-realisation parameter draws of an ensemble ([[ensemble.draw]]; index = the draw)
+  onsets = 9,       //!< Model 2 contact onsets of a random surface's asperities ([onset])
 };
 
 //! The kind's name, for messages and file attributes ("heights").

@@ -1,5 +1,6 @@
 #include "io/population_file.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -93,6 +94,12 @@ void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Populati
   f.write(g + "/summits/y_m", concatenated(pops, [](const Population& p) { return &p.y_m; }));
   f.write(g + "/summits/drive_phase_rad", concatenated(pops, [](const Population& p) { return &p.drive_phase_rad; }));
   f.write(g + "/summits/normal_load_n", concatenated(pops, [](const Population& p) { return &p.load_n; }));
+  // Only where a surface draws onsets ([onset]): other files stay as they were.
+  const auto has_onset = [](const Population& p) {
+    return std::any_of(p.onset_s.begin(), p.onset_s.end(), [](double t) { return t != 0.0; });
+  };
+  if (std::any_of(pops.begin(), pops.end(), has_onset))
+    f.write(g + "/summits/onset_s", concatenated(pops, [](const Population& p) { return &p.onset_s; }));
   if (sampled)
     f.write(g + "/summits/sampled_stiffness_n_per_m",
             concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }));
@@ -126,6 +133,10 @@ void write_asperities(Hdf5Writer& f, const std::string& g, std::span<const Popul
   f.write(g + "/asperities/element_length_m", asperity_column(pops, [](const Asperity& a) { return a.element.length_m; }));
   f.write(g + "/asperities/element_width_m", asperity_column(pops, [](const Asperity& a) { return a.element.width_m; }));
   f.write(g + "/asperities/drive_phase_rad", asperity_column(pops, [](const Asperity& a) { return a.drive_phase_rad; }));
+  if (std::any_of(pops.begin(), pops.end(), [](const Population& p) {
+        return std::any_of(p.asperities.begin(), p.asperities.end(), [](const Asperity& a) { return a.onset_s != 0.0; });
+      }))
+    f.write(g + "/asperities/onset_s", asperity_column(pops, [](const Asperity& a) { return a.onset_s; }));
   f.write(g + "/asperities/cannot_slip_model1", cannot_slip);
   f.write(g + "/asperities/static_deflection_over_length", deflection);
   f.write(g + "/asperities/near_length_model2", near_length);

@@ -58,6 +58,13 @@ void draw_positions(const RandomSurface& s, std::uint64_t seed, std::uint64_t re
   }
 }
 
+void draw_onsets(const RandomSurface& s, std::uint64_t seed, std::uint64_t realisation, Population& p, std::size_t n) {
+  p.onset_s.assign(n, 0.0);
+  if (!s.onset) return;
+  RandomEngine engine = random_stream(seed, realisation, StreamKind::onsets);
+  for (double& t : p.onset_s) t = s.onset->sample(engine);
+}
+
 void draw_phases(const RandomSurface& s, std::uint64_t seed, std::uint64_t realisation, Population& p, std::size_t n) {
   p.drive_phase_rad.assign(n, s.phase_rad);
   if (s.phase_rule != PhaseRule::uniform) return;
@@ -129,6 +136,7 @@ Asperity make_asperity(const RandomSurface& s, const Population& p, std::size_t 
   a.normal_load_n = p.load_n[i];
   a.height_m = p.height_m[i];
   a.drive_phase_rad = p.drive_phase_rad[i];
+  a.onset_s = p.onset_s[i];
   a.element = s.element;
   const double patch = p.contact ? p.contact->patch_radius_m[i] : 0.0;
   if (s.geometry_rule == GeometryRule::patch) a.element.length_m = a.element.width_m = std::sqrt(PI) * patch;
@@ -153,6 +161,7 @@ Population sample_population(const RandomSurface& surface, std::uint64_t seed, s
   draw_heights_and_stiffnesses(surface, seed, realisation, p, n);
   draw_positions(surface, seed, realisation, p, n);
   draw_phases(surface, seed, realisation, p, n);
+  draw_onsets(surface, seed, realisation, p, n);
   solve_contact(surface, p);
   for (std::size_t i = 0; i < n; ++i) {
     if (!(p.load_n[i] > 0.0)) continue;

@@ -37,6 +37,7 @@ struct Population {
   std::vector<double> x_m, y_m;              //!< positions on the nominal area [m]
   std::vector<double> sampled_stiffness_n_per_m;  //!< drawn k_i (sampled rule; empty under mindlin) [N/m]
   std::vector<double> drive_phase_rad;       //!< phi_i [rad]
+  std::vector<double> onset_s;               //!< Model 2 contact onsets t_on,i [s] (all 0 without an [onset] law)
   std::vector<double> load_n;                //!< N_i per summit (0 = not in contact) [N]
   std::optional<PopulationContact> contact;  //!< with material data
   //! The asperities a run simulates: the summits in contact, in summit order.

@@ -99,6 +99,8 @@ struct RandomSurface {
   double density_kg_per_m3 = 0.0;           //!< density rule: rho [kg/m^3]
   PhaseRule phase_rule = PhaseRule::fixed;
   double phase_rad = 0.0;                   //!< fixed drive phase [rad]
+  //! Model 2 contact onsets [s], one draw per summit (the onsets stream); none: all at t = 0.
+  std::optional<Distribution> onset;
 
   //! Mean number of summits per realisation (Poisson mean or the fixed count).
   [[nodiscard]] double mean_summit_count() const;

@@ -235,6 +235,14 @@ RandomSurface read_random_surface(TomlTable& root, const std::filesystem::path& 
   read_element(root, s);
   read_mass(root, s);
   read_drive(root, s);
+  if (auto onset = root.table("onset")) {
+    s.onset = Distribution::from_toml(*onset, base_dir);
+    if (!(s.onset->lower() >= 0.0))
+      onset->fail("kind", "can draw onsets below 0 s (from " + format_number(s.onset->lower()) +
+                              " s): an asperity comes into contact at t >= 0 (truncate with min = 0)");
+    if (!std::isfinite(s.onset->upper()) && s.onset->quantile(1.0 - 1e-12) > 1e3)
+      onset->fail("kind", "draws onsets beyond 1000 s: give the law in seconds");
+  }
   return s;
 }
 

@@ -298,6 +298,35 @@ rule = "fixed"
 normal_load_n = 1e-3
 )";
 
+TEST(PopulationSampling, OnsetsFollowTheirLawFromAStreamOfTheirOwn) {
+  // [onset] uniform on [0, 20 us]: every asperity carries its summit's draw, the draws have
+  // the law's mean and variance (sd of the mean over ~600 summits: 0.24 us), and adding the
+  // law moves no other quantity's numbers (its own stream, STYLE.md "Numerics").
+  const RandomSurface plain = read_surface(LIGHT);
+  const RandomSurface with_onsets = read_surface(LIGHT + "[onset]\nkind = \"uniform\"\nmin = 0\nmax = 20e-6\n");
+  std::vector<double> onsets;
+  for (std::uint64_t r = 0; r < 30; ++r) {
+    const Population p = sample_population(plain, SEED, r), q = sample_population(with_onsets, SEED, r);
+    EXPECT_TRUE(same_bits(p.height_m, q.height_m));
+    EXPECT_TRUE(same_bits(p.sampled_stiffness_n_per_m, q.sampled_stiffness_n_per_m));
+    EXPECT_TRUE(same_bits(p.x_m, q.x_m));
+    EXPECT_TRUE(std::all_of(p.onset_s.begin(), p.onset_s.end(), [](double t) { return t == 0.0; }));
+    for (std::size_t i = 0; i < q.asperities.size(); ++i) EXPECT_EQ(q.asperities[i].onset_s, q.onset_s[q.summit_of_asperity[i]]);
+    onsets.insert(onsets.end(), q.onset_s.begin(), q.onset_s.end());
+  }
+  ASSERT_GT(onsets.size(), 400u);
+  double mean = 0.0, square = 0.0;
+  for (double t : onsets) mean += t, square += t * t;
+  mean /= static_cast<double>(onsets.size());
+  const double variance = square / static_cast<double>(onsets.size()) - mean * mean;
+  EXPECT_NEAR(mean, 10e-6, 4.0 * 20e-6 / std::sqrt(12.0 * static_cast<double>(onsets.size())));
+  EXPECT_NEAR(variance, 20e-6 * 20e-6 / 12.0, 0.15 * 20e-6 * 20e-6 / 12.0);
+  EXPECT_TRUE(std::all_of(onsets.begin(), onsets.end(), [](double t) { return t >= 0.0 && t <= 20e-6; }));
+  // A law that can draw negative onsets is refused at its table.
+  EXPECT_THROW(read_surface(LIGHT + "[onset]\nkind = \"normal\"\nmean = 5e-6\nstd = 1e-6\n"), InputError);
+}
+
+
 TEST(PopulationSampling, PoissonCountHasPoissonMeanAndVariance) {
   // Closed form: count ~ Poisson(lambda), lambda = density x A0 = 20, so E = Var = lambda.
   // Standard errors over K realisations: of the mean sqrt(lambda/K); of the sample variance
