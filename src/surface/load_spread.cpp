@@ -80,4 +80,12 @@ LoadedSummit LoadSpread::draw(RandomEngine& engine) const {
   return {z, load_per_excess_ * std::pow(std::max(0.0, z - separation_), 1.5)};
 }
 
+double LoadSpread::load_quantile(double p) const {
+  if (!(p > 0.0 && p < 1.0)) throw Error("LoadSpread::load_quantile: p = " + format_number(p) + " must lie in (0, 1)");
+  if (cv_ == 0.0) return mean_load_n_;
+  // The load rises with Z: its p-quantile is that of Z given Z > δ, Q^{-1}((1 - p) Q(δ)).
+  const double z = boost::math::quantile(boost::math::complement(boost::math::normal(0.0, 1.0), (1.0 - p) * phi_cdf(-separation_)));
+  return load_per_excess_ * std::pow(std::max(0.0, z - separation_), 1.5);
+}
+
 }  // namespace stengmc

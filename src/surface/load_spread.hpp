@@ -53,6 +53,8 @@ class LoadSpread {
   //! One summit in contact: Z from N(0, 1) conditioned on Z > δ by inverse-CDF sampling
   //! (one uniform draw from `engine`), its load from Z. With cv = 0, Z ~ N(0, 1) and N = N̄.
   [[nodiscard]] LoadedSummit draw(RandomEngine& engine) const;
+  //! The p-quantile of the load law, 0 < p < 1 [N].
+  [[nodiscard]] double load_quantile(double p) const;
 
   [[nodiscard]] double mean_load_n() const { return mean_load_n_; }
   [[nodiscard]] double cv() const { return cv_; }
