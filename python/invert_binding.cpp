@@ -160,13 +160,7 @@ py::dict invert(const std::string& known, const py::array_t<double, py::array::f
     check_work(estimate_inversion(study, setup, {.records = 1, .threads = 1, .builds_atoms = !bank}), limits,
                name + ": inverting its " + std::to_string(setup.grid.samples) + " samples", names);
     check_record_varies(voltage, name);
-    std::unique_ptr<AtomTable> atoms;
-    if (bank) {
-      atoms = std::make_unique<AtomTable>(setup.device, setup.grid, bank->atoms);
-    } else {
-      const auto [low, high] = atom_range(setup);
-      atoms = std::make_unique<AtomTable>(setup.device, setup.grid, low, high);
-    }
+    const std::unique_ptr<AtomLibrary> atoms = bank ? build_atom_library(setup, bank->atoms) : build_atom_library(setup);
     Inverter inverter(setup, *atoms, bank ? &bank->maps : nullptr);
     inversion = inverter.invert(name, voltage);
   }

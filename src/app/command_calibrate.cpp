@@ -102,8 +102,10 @@ void run(const CalibrateOptions& options) {
   std::filesystem::remove(journal);
 
   const std::size_t invalid = bank.samples.size() - bank.maps.records;
-  std::printf("  atoms: %.3g-%.3g N/m, worst check against the forward model %.2g (relative L2), built in %.1f s\n",
-              bank.atoms.min_stiffness_n_per_m, bank.atoms.max_stiffness_n_per_m, bank.atoms.check_error, bank.atom_seconds);
+  std::printf("  atoms: %zu shapes over Pi %.3g-%.3g (belt-carried stretch) and zeta %.2g-%.2g, worst check against the "
+              "forward model %.2g (relative L2), built in %.1f s\n",
+              bank.atoms.pi_nodes.size() * bank.atoms.zeta_nodes.size(), bank.atoms.range.min_pi, bank.atoms.range.max_pi,
+              bank.atoms.range.min_zeta, bank.atoms.range.max_zeta, bank.atoms.check_error, bank.atom_seconds);
   std::printf("  records: %zu valid, %zu invalid (an asperity reached l, outside the device's range, or the estimator "
               "could not answer)%s\n", bank.maps.records,
               invalid, bank.resumed ? (", " + std::to_string(bank.resumed) + " resumed from the journal").c_str() : "");

@@ -143,14 +143,13 @@ void run(const InvertOptions& options) {
               grid->sample_rate_hz(), options.known.c_str(),
               bank ? ("bank " + bank_path).c_str() : "NO calibration bank (uncalibrated answers)");
   std::fflush(stdout);
-  std::unique_ptr<AtomTable> atoms;
+  std::unique_ptr<AtomLibrary> atoms;
   if (bank) {
-    atoms = std::make_unique<AtomTable>(setup.device, setup.grid, bank->atoms);
+    atoms = build_atom_library(setup, bank->atoms);
   } else {
-    std::printf("  building the atoms (the forward model on a grid of stiffnesses; a bank keeps them)...\n");
+    std::printf("  building the atoms (the forward model over the prior's asperities; a bank keeps them)...\n");
     std::fflush(stdout);
-    const auto [low, high] = atom_range(setup);
-    atoms = std::make_unique<AtomTable>(setup.device, setup.grid, low, high);
+    atoms = build_atom_library(setup);
   }
 
   std::vector<Inversion> inversions(records.size());

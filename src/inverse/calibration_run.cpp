@@ -16,6 +16,8 @@
 #include "inverse/inversion_work.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/prior_study.hpp"
+#include "inverse/fit_layout.hpp"
+#include "inverse/load_prior.hpp"
 #include "inverse/record_estimator.hpp"
 
 namespace stengmc {
@@ -31,7 +33,7 @@ double line_frequency_hz(const KnownDevice& device, double k) { return device.an
 struct Worker {
   RecordEstimator estimator;
   NaiveCounter naive;
-  Worker(const AtomTable& atoms, const InversePrior& prior, double band_low, double band_high)
+  Worker(const AtomLibrary& atoms, const InversePrior& prior, double band_low, double band_high)
       : estimator(atoms, prior), naive(atoms.grid().samples, atoms.grid().sample_rate_hz(), band_low, band_high) {}
 };
 
@@ -56,14 +58,33 @@ InverseSetup inverse_setup(const Study& study, std::optional<RecordGrid> grid) {
   return setup;
 }
 
-double one_asperity_rms_v(const AtomTable& atoms, const InversePrior& prior) {
+double one_asperity_rms_v(const AtomLibrary& atoms, const InversePrior& prior) {
   const auto [low, high] = prior.support();
   const RecordModel model(atoms);
+  FitState state;
+  state.damping_rate_per_s = atoms.device().damping_rate_per_s();
+  state.atoms.push_back({std::sqrt(low * high), atoms.device().asperity.normal_load_n, prior.onset_s[0]});
   std::vector<double> v(atoms.grid().samples);
-  model.evaluate(std::vector<double>{std::sqrt(low * high)}, v);
+  model.voltage(state, v);
   double square = 0.0;
   for (double x : v) square += x * x / static_cast<double>(v.size());
   return std::sqrt(square);
+}
+
+namespace {
+AtomCoverage coverage_of(const InverseSetup& setup) {
+  const auto [k_low, k_high] = atom_range(setup);
+  const LoadPrior loads(setup.prior);
+  return atom_coverage(k_low, k_high, fit_layout(setup.prior, setup.device, loads));
+}
+}  // namespace
+
+std::unique_ptr<AtomLibrary> build_atom_library(const InverseSetup& setup) {
+  return std::make_unique<AtomLibrary>(setup.device, setup.grid, coverage_of(setup));
+}
+
+std::unique_ptr<AtomLibrary> build_atom_library(const InverseSetup& setup, AtomShapeData shapes) {
+  return std::make_unique<AtomLibrary>(setup.device, setup.grid, coverage_of(setup), std::move(shapes));
 }
 
 std::pair<double, double> atom_range(const InverseSetup& setup) {
@@ -100,9 +121,9 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
                  std::to_string(bank.setup.grid.samples) + " samples (--records, or [inverse] calibration_records)",
              options.limit_names);
 
-  const auto [k_low, k_high] = atom_range(bank.setup);
-  const AtomTable atoms(bank.setup.device, bank.setup.grid, k_low, k_high);
-  bank.atoms = atoms.data();
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(bank.setup);
+  const AtomLibrary& atoms = *library;
+  bank.atoms = atoms.shapes().data();
   bank.atom_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const auto [s_low, s_high] = prior.support();

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "inverse/atom_table.hpp"
+#include "inverse/atom_library.hpp"
 #include "inverse/bank_identity.hpp"
 #include "inverse/calibration_maps.hpp"
 #include "inverse/calibration_sample.hpp"
@@ -33,16 +33,22 @@ InverseSetup inverse_setup(const Study& study, std::optional<RecordGrid> grid = 
 //! 1.25 each way, cut below where an asperity would reach its element's length [N/m].
 std::pair<double, double> atom_range(const InverseSetup& setup);
 
+//! The atoms `setup`'s fits need (atom_range, the prior's loads and tolerance), built with the
+//! forward model (~1 s), or around a bank's stored shapes.
+std::unique_ptr<AtomLibrary> build_atom_library(const InverseSetup& setup);
+std::unique_ptr<AtomLibrary> build_atom_library(const InverseSetup& setup, AtomShapeData shapes);
+
 //! The rms voltage of one sliding asperity of the prior's central stiffness (the geometric
-//! mean of its 1e-4 and 1 - 1e-4 quantiles) over the record [V]: the scale a record of no
-//! sliding asperity takes its noise level from, and the amplitude checks compare with.
-double one_asperity_rms_v(const AtomTable& atoms, const InversePrior& prior);
+//! mean of its 1e-4 and 1 - 1e-4 quantiles) at the device's load, in contact from the start,
+//! over the record [V]: the scale a record of no sliding asperity takes its noise level from,
+//! and the amplitude checks compare with.
+double one_asperity_rms_v(const AtomLibrary& atoms, const InversePrior& prior);
 
 struct CalibrationBank {
   InverseSetup setup;
   std::string device_study_file, device_study_text;
   std::string prior_study_text;             //!< the ensemble study the records came from
-  AtomTableData atoms;
+  AtomShapeData atoms;                      //!< the atoms' shapes (the rest is rebuilt from them)
   CalibrationMaps maps;
   std::vector<CalibrationSample> samples;   //!< every record, valid or not, by id
   std::size_t resumed = 0;                  //!< records recovered from an interrupted run

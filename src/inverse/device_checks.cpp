@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
+#include "pipeline/run_study.hpp"
 #include "pipeline/study_realisation.hpp"
 #include "pipeline/validity.hpp"
 #include "spectral/analysed_voltage.hpp"
@@ -107,6 +108,15 @@ void check_device_over_prior(const Study& known, const KnownDevice& device, cons
                           format_number(breakaway_s) + " s, after the record ends (t = " + format_number(end_s) +
                           " s): the record would hold no line to invert. A faster belt or a longer record (duration_s) "
                           "would");
+
+  // The forward model as `run` runs it, once, at the stiffest asperity (a few ms): the atoms
+  // come from the tribology alone, so a circuit that fails (R = 1e-300 Ohm: a non-finite
+  // voltage) would otherwise fail every calibration record, or every fit, instead of
+  // stopping the command with run's own message.
+  RunOptions options;
+  options.show_progress = false;
+  options.keep_traces = false;
+  (void)run_study(device_study_at(known, device, k_stiffest, grid), options);
 }
 
 void check_prior_over_device(const Study& known, const KnownDevice& device, const InversePrior& prior,

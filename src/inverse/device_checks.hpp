@@ -37,7 +37,9 @@ Study device_study_at(const Study& known, const KnownDevice& device, std::span<c
 //!  - a record that ends before the stiffest asperity breaks away from the belt (no line);
 //!  - every asperity of the prior dragged to its element's length before it breaks away
 //!    (run's validity report, pipeline/validity.hpp, at the stiffest asperity);
-//!  - a one-asperity voltage R sigma w v_b beyond what the analyses can square and sum.
+//!  - a one-asperity voltage R sigma w v_b beyond what the analyses can square and sum;
+//!  - and runs the stiffest asperity through the forward model as `run` does, so that what
+//!    fails there (a circuit's non-finite voltage, ModelError) stops the command up front.
 void check_device_over_prior(const Study& known, const KnownDevice& device, const InversePrior& prior,
                              const RecordGrid& grid);
 

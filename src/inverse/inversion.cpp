@@ -13,6 +13,27 @@ namespace stengmc {
 
 namespace {
 
+//! True when the lines' stiffnesses spread by more than the record model resolves: ln k
+//! apart by less than its accuracy (MODEL_RELATIVE_ACCURACY), lines are one stiffness found
+//! several times (asperities of equal k, whose lines merge: the fit leaves them a few 1e-4
+//! apart even on a noise-free record), and no law is fitted to them. The law fits themselves
+//! go down to MIN_LAW_SD_LOG (1e-4), a numerical floor, not a physical one.
+bool resolved_spread(std::span<const double> k) {
+  return has_spread(k) && sample_sd_log(std::vector<double>(k.begin(), k.end())) >= MODEL_RELATIVE_ACCURACY;
+}
+
+//! The laws compared on `k`, none fitted when its spread is not resolved.
+std::vector<LawFit> laws_of(std::span<const double> k) {
+  if (resolved_spread(k)) return compare_stiffness_laws(k);
+  std::vector<LawFit> none;
+  for (StiffnessFamily f : {StiffnessFamily::lognormal, StiffnessFamily::gamma, StiffnessFamily::weibull}) {
+    LawFit fit;
+    fit.family = f;
+    none.push_back(fit);
+  }
+  return none;
+}
+
 // The default FFT threshold without a bank (the [spectrum] default).
 constexpr double DEFAULT_NAIVE_THRESHOLD = 10.0;
 // A residual whose power inside the lines' band exceeds the noise band's by this factor is
@@ -48,19 +69,15 @@ std::string number(double x, const char* format = "%.4g") {
 
 }  // namespace
 
-Inverter::Inverter(const InverseSetup& setup, const AtomTable& atoms, const CalibrationMaps* maps)
+Inverter::Inverter(const InverseSetup& setup, const AtomLibrary& atoms, const CalibrationMaps* maps)
     : setup_(&setup),
       atoms_(&atoms),
       maps_(maps),
       estimator_(atoms, setup.prior),
       naive_(atoms.grid().samples, atoms.grid().sample_rate_hz(),
              atoms.device().angular_frequency(setup.prior.support().first) / (2.0 * PI),
-             atoms.device().angular_frequency(setup.prior.support().second) / (2.0 * PI)),
-      model_(atoms) {
-  const auto [low, high] = setup.prior.support();
-  std::vector<double> atom(atoms.grid().samples);
-  model_.evaluate(std::vector<double>{std::sqrt(low * high)}, atom);
-  atom_rms_v_ = rms(atom);
+             atoms.device().angular_frequency(setup.prior.support().second) / (2.0 * PI)) {
+  atom_rms_v_ = one_asperity_rms_v(atoms, setup.prior);
 }
 
 Inversion Inverter::invert(const std::string& name, std::span<const double> voltage) {
@@ -76,9 +93,9 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
   out.naive_count = naive_.count(voltage, std::vector<double>{threshold}).front();
   std::vector<double> k;
   for (const EstimatedLine& line : out.raw.lines) k.push_back(line.stiffness_n_per_m);
-  out.laws = compare_stiffness_laws(k);
+  out.laws = laws_of(k);
   out.model_v.resize(voltage.size());
-  model_.evaluate(k, out.model_v);
+  estimator_.model().voltage(out.raw.state, out.model_v);
 
   // ---- the verdict
   const RecordEstimate& e = out.raw;
@@ -109,14 +126,19 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
     out.verdict.push_back(std::to_string(blended) + " lines lie within one line width of another: resolution limits them. "
                           "Their number is sure (two coinciding asperities give twice one atom), their individual "
                           "stiffnesses less so (see each line's interval).");
-  if (k.size() >= 3 && !has_spread(k))
-    out.verdict.push_back("The " + std::to_string(k.size()) + " lines share one stiffness, " + number(sample_median(k)) +
+  if (k.size() >= 3 && !resolved_spread(k)) {
+    // One stiffness found several times: its estimate is the lines' mean in ln k (their
+    // median would pick one line's share of the model's error).
+    double mean_log = 0.0;
+    for (double x : k) mean_log += std::log(x) / static_cast<double>(k.size());
+    out.verdict.push_back("The " + std::to_string(k.size()) + " lines share one stiffness, " + number(std::exp(mean_log)) +
                           " N/m (sd of ln k " + number(sample_sd_log(k), "%.2g") +
                           "): asperities of equal k, whose lines merge. No stiffness law is fitted to one stiffness.");
+  }
   out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
                         (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
-  if (atoms_->data().check_error > 1e-2)
-    out.verdict.push_back("The atoms match the forward model to " + percent(atoms_->data().check_error) +
+  if (atoms_->check_error() > 1e-2)
+    out.verdict.push_back("The atoms match the forward model to " + percent(atoms_->check_error()) +
                           " only (stick modulation at this belt velocity): expect biased stiffnesses.");
 
   // ---- warnings
@@ -160,7 +182,7 @@ std::vector<LawFit> pooled_laws(const std::vector<Inversion>& inversions) {
   std::vector<double> k;
   for (const Inversion& inv : inversions)
     for (const EstimatedLine& line : inv.raw.lines) k.push_back(line.stiffness_n_per_m);
-  return compare_stiffness_laws(k);
+  return laws_of(k);
 }
 
 }  // namespace stengmc

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "inverse/atom_table.hpp"
+#include "inverse/atom_library.hpp"
 #include "inverse/calibration_maps.hpp"
 #include "inverse/calibration_run.hpp"
 #include "inverse/naive_count.hpp"
@@ -30,17 +30,16 @@ struct Inversion {
 class Inverter {
  public:
   //! `maps` may be null (no bank: raw posterior, uncalibrated). One Inverter per thread.
-  Inverter(const InverseSetup& setup, const AtomTable& atoms, const CalibrationMaps* maps);
+  Inverter(const InverseSetup& setup, const AtomLibrary& atoms, const CalibrationMaps* maps);
 
   Inversion invert(const std::string& name, std::span<const double> voltage);
 
  private:
   const InverseSetup* setup_;
-  const AtomTable* atoms_;
+  const AtomLibrary* atoms_;
   const CalibrationMaps* maps_;
   RecordEstimator estimator_;
   NaiveCounter naive_;
-  RecordModel model_;
   double atom_rms_v_ = 0.0;  //!< rms of one atom at the prior's central stiffness over the grid [V]
 };
 

@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "core/format.hpp"
-#include "inverse/atom_table.hpp"
+#include "inverse/atom_library.hpp"
+#include "inverse/fit_layout.hpp"
+#include "inverse/load_prior.hpp"
 #include "inverse/device_checks.hpp"
 
 namespace stengmc {
@@ -27,25 +29,28 @@ WorkEstimate forward_run(const Study& known, const InverseSetup& setup, double k
 }
 
 void add_atoms(const Study& known, const InverseSetup& setup, const InversionWork& work, WorkEstimate& e) {
-  // The stiffest asperity is the fastest run (the most periods); the table costs at most as
-  // much as if every run were of it.
+  // The shapes: one short forward run per node of (Pi, zeta) the prior reaches, in a frame
+  // where a radian is 100 ns; each costs at most the longest's.
   const auto [softest, stiffest] = simulated_stiffness_range(setup.prior);
-  const RecordGrid& grid = setup.grid;
-  const AtomTableRuns runs = atom_table_runs(setup.device, grid, softest, stiffest);
-  const WorkEstimate full = forward_run(known, setup, stiffest, 1, grid);
-  const WorkEstimate head =
-      forward_run(known, setup, stiffest, 1, RecordGrid{grid.start_s, grid.step_s, std::max<std::size_t>(runs.head_samples, 2)});
-  const double short_runs = static_cast<double>(runs.heads) + VALID_RANGE_RUNS;
-  e.add_steps("atoms: " + count(static_cast<double>(runs.full)) + " forward runs of " + count(static_cast<double>(grid.samples)) +
-                  " samples and " + count(short_runs) + " of " + count(static_cast<double>(runs.head_samples)),
-              static_cast<double>(runs.full) * full.steps + short_runs * head.steps);
-  // The table's forward runs take every thread OpenMP gives, whatever -j says.
-  const double parallel = std::min<double>(std::max(work.threads, omp_get_max_threads()), static_cast<double>(runs.full));
-  e.add_memory("atoms: " + count(parallel) + " forward runs at once of " + count(static_cast<double>(grid.samples)) + " samples",
-               parallel * full.memory_bytes);
-  e.add_memory("atoms: " + count(static_cast<double>(runs.heads)) + " heads of " + count(static_cast<double>(runs.head_samples)) +
-                   " samples, and the envelope",
-               16.0 * static_cast<double>(runs.heads * runs.head_samples) + 16.0 * static_cast<double>(grid.samples));
+  const LoadPrior loads(setup.prior);
+  const AtomCoverage coverage = atom_coverage(softest, stiffest, fit_layout(setup.prior, setup.device, loads));
+  const FrictionRatios ratios(setup.device);
+  const AtomShapeWork shapes = atom_shape_work(atom_shape_range(setup.device, ratios.reference(), coverage));
+  const double reference_k = setup.device.asperity.mass_kg * 1e14;  // omega0 = 1e7 rad/s
+  const RecordGrid node_grid{0.0, setup.grid.step_s,
+                             std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(shapes.longest_rad * 1e-7 / setup.grid.step_s)))};
+  const WorkEstimate node = forward_run(known, setup, reference_k, 1, node_grid);
+  const double runs = static_cast<double>(shapes.runs) + VALID_RANGE_RUNS;
+  e.add_steps("atoms: " + count(runs) + " forward runs of up to " + count(static_cast<double>(node_grid.samples)) + " samples",
+              runs * node.steps);
+  // The shapes' runs take every thread OpenMP gives, whatever -j says.
+  const double parallel = std::min<double>(std::max(work.threads, omp_get_max_threads()), runs);
+  e.add_memory("atoms: " + count(parallel) + " forward runs at once", parallel * node.memory_bytes);
+  // The shapes (two rows of ~800 values per node) and the envelopes (three dampings x ~200
+  // loads x the record).
+  e.add_memory("atoms: " + count(static_cast<double>(shapes.runs)) + " shapes and the envelopes of the record's " +
+                   count(static_cast<double>(setup.grid.samples)) + " samples",
+               16.0 * 1600.0 * static_cast<double>(shapes.runs) + 8.0 * 600.0 * static_cast<double>(setup.grid.samples));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
@@ -26,23 +27,43 @@ std::size_t smooth_length(std::size_t n) {
   return best;
 }
 
+// How many of the map's best frequencies are tried, and how many of the candidates built on
+// them are scored exactly.
+constexpr std::size_t FREQUENCIES = 8;
+constexpr std::size_t EXACT = 8;
+// Loads tried per frequency when each atom has its own (log-spaced over the prior's).
+constexpr std::size_t LOAD_GRID = 12;
+
 }  // namespace
 
 struct LineProposals::Fft {
   double* in = nullptr;
   fftw_complex* out = nullptr;
   fftw_plan plan = nullptr;
+  // The sliding matched filter's complex transforms, of length `sliding`.
+  std::size_t sliding = 0;
+  fftw_complex* a = nullptr;
+  fftw_complex* b = nullptr;
+  fftw_complex* record = nullptr;  // FFT of the residual
+  fftw_plan forward = nullptr, backward = nullptr;
   ~Fft() {
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     if (plan) fftw_destroy_plan(plan);
+    if (forward) fftw_destroy_plan(forward);
+    if (backward) fftw_destroy_plan(backward);
     fftw_free(out);
     fftw_free(in);
+    fftw_free(a);
+    fftw_free(b);
+    fftw_free(record);
   }
 };
 
-LineProposals::LineProposals(const AtomTable& atoms, std::size_t padding) : atoms_(&atoms) {
-  const RecordGrid& grid = atoms.grid();
-  const KnownDevice& device = atoms.device();
+LineProposals::LineProposals(const RecordModel& model, const FitLayout& layout, const LoadPrior& loads, std::size_t padding)
+    : model_(&model), layout_(layout), loads_(&loads) {
+  const AtomLibrary& lib = model.atoms();
+  const RecordGrid& grid = lib.grid();
+  const KnownDevice& device = lib.device();
   length_ = smooth_length(std::max<std::size_t>(1, padding) * grid.samples);
   fft_ = std::make_unique<Fft>();
   fft_->in = fftw_alloc_real(length_);
@@ -54,77 +75,214 @@ LineProposals::LineProposals(const AtomTable& atoms, std::size_t padding) : atom
     fft_->plan = fftw_plan_dft_r2c_1d(static_cast<int>(length_), fft_->in, fft_->out, FFTW_ESTIMATE);
   }
   if (!fft_->plan) throw Error("line proposals: FFTW could not plan a transform of length " + std::to_string(length_));
-
-  const double scale = device.voltage_scale_v() / device.model.belt_velocity_m_per_s;
-  weight_.resize(grid.samples);
-  for (std::size_t m = 0; m < grid.samples; ++m) weight_[m] = scale * atoms.envelope().at(grid.at(m));
-
-  // Atom energies on a grid of ln k (they change slowly: plateau length and envelope start).
-  const double lo = std::log(atoms.min_stiffness()), hi = std::log(atoms.max_stiffness());
-  const std::size_t points = 64;
-  for (std::size_t j = 0; j < points; ++j) {
-    const double x = lo + (hi - lo) * static_cast<double>(j) / static_cast<double>(points - 1);
-    energy_log_k_.push_back(x);
-    energy_table_.push_back(atoms.energy(std::exp(x)));
+  fft_->sliding = smooth_length(2 * grid.samples);
+  fft_->a = fftw_alloc_complex(fft_->sliding);
+  fft_->b = fftw_alloc_complex(fft_->sliding);
+  fft_->record = fftw_alloc_complex(fft_->sliding);
+  if (!fft_->a || !fft_->b || !fft_->record) throw Error("line proposals: FFTW could not allocate buffers");
+  {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fft_->forward = fftw_plan_dft_1d(static_cast<int>(fft_->sliding), fft_->a, fft_->b, FFTW_FORWARD, FFTW_ESTIMATE);
+    fft_->backward = fftw_plan_dft_1d(static_cast<int>(fft_->sliding), fft_->a, fft_->b, FFTW_BACKWARD, FFTW_ESTIMATE);
   }
+  if (!fft_->forward || !fft_->backward) throw Error("line proposals: FFTW could not plan the sliding filter");
 
-  // The frequency bins that belong to stiffnesses in the table.
+  // The device's nominal envelope from breakaway, and its energy from each point on.
+  const double m = device.asperity.mass_kg, v_b = device.model.belt_velocity_m_per_s;
+  const double beta = device.asperity.normal_load_n * lib.ratios().reference() / (m * v_b);
+  const double d = layout.nominal_damping_rate;
+  envelope_.resize(grid.samples);
+  lib.model().envelopes().evaluate(beta, d, 0.0, envelope_);
+  envelope_energy_.assign(grid.samples + 1, 0.0);
+  for (std::size_t j = 0; j < grid.samples; ++j) envelope_energy_[j + 1] = envelope_energy_[j] + envelope_[j] * envelope_[j];
+
+  // Tail starts: half an envelope decay apart, as far as a breakaway can come.
+  starts_s_ = {grid.start_s};
+  if (layout.onset_free || layout.load_per_atom || layout.load_shared) {
+    const double rate = d + beta * lib.ratios().linear_damping();
+    const double spacing = 0.5 / std::max(rate, 1.0 / grid.duration_s());
+    AtomParameters late{lib.min_stiffness(), layout.nominal_load_n * std::exp(layout.load_per_atom || layout.load_shared ? layout.max_log_load : 0.0),
+                        layout.onset_max_s};
+    const double last = std::min(grid.start_s + 0.8 * grid.duration_s(), lib.model().breakaway_time(late, d));
+    for (double t = grid.start_s + spacing; t < last; t += spacing) starts_s_.push_back(t);
+  }
   const double bin_rad_per_s = 2.0 * PI / (static_cast<double>(length_) * grid.step_s);
-  first_bin_ = static_cast<std::size_t>(std::ceil(device.angular_frequency(atoms.min_stiffness()) / bin_rad_per_s));
-  last_bin_ = std::min(length_ / 2, static_cast<std::size_t>(std::floor(device.angular_frequency(atoms.max_stiffness()) / bin_rad_per_s)));
-  for (std::size_t j = first_bin_; j <= last_bin_; ++j) {
-    const double omega = bin_rad_per_s * static_cast<double>(j);
-    const double k = device.stiffness_for(omega);
-    double shift = 0.0, phase = 0.0;
-    atoms.tail_parameters(k, shift, phase);
-    const double tb = atoms.breakaway_time(k);
-    bin_stiffness_.push_back(k);
-    // The tail is E cos(omega (t - tb) + phase) ~ E cos(omega t + phi): phi = phase - omega tb,
-    // and t = start + m dt puts e^{-i omega start} on the FFT.
-    bin_phase_.push_back(phase - omega * tb - omega * grid.start_s);
-    bin_energy_.push_back(atom_energy(k));
-    bin_breakaway_.push_back(tb);
+  first_bin_ = static_cast<std::size_t>(std::ceil(std::sqrt(lib.min_stiffness() / m) / bin_rad_per_s));
+  last_bin_ = std::min(length_ / 2, static_cast<std::size_t>(std::floor(std::sqrt(lib.max_stiffness() / m) / bin_rad_per_s)));
+  if (layout.load_per_atom) {
+    const auto [low, high] = loads.support();
+    // The inner 98 % of the loads: the search's LM reaches the tails from there.
+    const double a = std::log(low) + 0.1 * std::log(high / low), b = std::log(high) - 0.1 * std::log(high / low);
+    for (std::size_t i = 0; i < LOAD_GRID; ++i)
+      loads_grid_.push_back(layout.nominal_load_n * std::exp(a + (b - a) * static_cast<double>(i) / static_cast<double>(LOAD_GRID - 1)));
   }
 }
 
 LineProposals::~LineProposals() = default;
 
-double LineProposals::atom_energy(double k) const {
-  const double x = std::clamp(std::log(k), energy_log_k_.front(), energy_log_k_.back());
-  const double position = (x - energy_log_k_.front()) / (energy_log_k_[1] - energy_log_k_[0]);
-  const auto i = std::min(static_cast<std::size_t>(position), energy_table_.size() - 2);
-  const double f = position - static_cast<double>(i);
-  return energy_table_[i] + f * (energy_table_[i + 1] - energy_table_[i]);
+LineCandidate LineProposals::score(const AtomParameters& atom, std::span<const double> r, double amplitude, double d) const {
+  AtomSums sums;
+  sums.reset(r.size());
+  thread_local AtomValues values;
+  model_->add(atom, d, sums, &values);
+  // The atom alone through the circuit's first-order terms (as the record model puts it).
+  thread_local std::vector<double> g;
+  g.resize(r.size());
+  model_->unit_voltage(sums, g);
+  double dot = 0.0, energy = 0.0;
+  for (std::size_t j = 0; j < r.size(); ++j) dot += r[j] * g[j], energy += g[j] * g[j];
+  return {atom, 2.0 * amplitude * dot - amplitude * amplitude * energy, amplitude * amplitude * energy};
 }
 
-std::vector<LineCandidate> LineProposals::propose(std::span<const double> residual, std::size_t count) {
-  const RecordGrid& grid = atoms_->grid();
-  if (residual.size() != grid.samples) throw Error("LineProposals::propose: one residual value per sample expected");
-  for (std::size_t m = 0; m < grid.samples; ++m) fft_->in[m] = residual[m] * weight_[m];
-  std::fill(fft_->in + grid.samples, fft_->in + length_, 0.0);
-  fftw_execute(fft_->plan);
-  const double plateau_v = atoms_->device().voltage_scale_v();
+std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, double amplitude, double d, double load_factor,
+                                                  std::size_t count) {
+  const AtomLibrary& lib = model_->atoms();
+  const RecordGrid& grid = lib.grid();
+  const KnownDevice& device = lib.device();
+  const AtomModel& atom_model = lib.model();
+  const std::size_t samples = grid.samples;
+  if (r.size() != samples) throw Error("LineProposals::propose: one residual value per sample expected");
+  const double h = grid.step_s, m = device.asperity.mass_kg, scale = model_->volts_per_unit();
+  std::vector<double> prefix(samples + 1, 0.0);
+  for (std::size_t j = 0; j < samples; ++j) prefix[j + 1] = prefix[j] + r[j];
+  auto index_of = [&](double t) { return static_cast<std::size_t>(std::clamp(std::round((t - grid.start_s) / h), 0.0, static_cast<double>(samples))); };
 
-  const std::size_t bins = bin_stiffness_.size();
-  std::vector<double> score(bins);
-  for (std::size_t b = 0; b < bins; ++b) {
-    const fftw_complex& c = fft_->out[first_bin_ + b];
-    // Re[e^{i phi} conj(C)] = cos(phi) Re C + sin(phi) Im C
-    const double tail = std::cos(bin_phase_[b]) * c[0] + std::sin(bin_phase_[b]) * c[1];
-    // The belt-carried plateau is shared by every asperity: it says how many there are, not
-    // where their lines lie, and a residual that still holds many plateaus would draw the
-    // proposals to the softest atoms (the longest plateau). The map scores the tails alone.
-    const double end = std::clamp((bin_breakaway_[b] - grid.start_s) / grid.step_s, 0.0, static_cast<double>(grid.samples));
-    const double plateau_energy = plateau_v * plateau_v * end;
-    score[b] = 2.0 * tail - (bin_energy_[b] - plateau_energy);
+  // One transform per tail start.
+  const std::size_t bins = last_bin_ >= first_bin_ ? last_bin_ - first_bin_ + 1 : 0;
+  std::vector<std::vector<std::complex<double>>> maps(starts_s_.size(), std::vector<std::complex<double>>(bins));
+  std::vector<double> start_energy(starts_s_.size());
+  const double bin_rad_per_s = 2.0 * PI / (static_cast<double>(length_) * h);
+  for (std::size_t s = 0; s < starts_s_.size(); ++s) {
+    const std::size_t first = index_of(starts_s_[s]);
+    std::fill(fft_->in, fft_->in + length_, 0.0);
+    for (std::size_t j = first; j < samples; ++j) fft_->in[j] = r[j] * envelope_[j - first];
+    start_energy[s] = envelope_energy_[samples - first];
+    fftw_execute(fft_->plan);
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double omega = bin_rad_per_s * static_cast<double>(first_bin_ + b);
+      // The transform counts time from the record's first sample.
+      maps[s][b] = std::complex<double>(fft_->out[first_bin_ + b][0], fft_->out[first_bin_ + b][1]) *
+                   std::polar(1.0, -omega * grid.start_s);
+    }
   }
+  // The map's best frequencies: local maxima of the free-phase gain |C_s|^2 / E_s.
+  std::vector<double> gain(bins, 0.0);
+  for (std::size_t b = 0; b < bins; ++b)
+    for (std::size_t s = 0; s < starts_s_.size(); ++s)
+      gain[b] = std::max(gain[b], std::norm(maps[s][b]) / std::max(start_energy[s], 1e-300));
+  std::vector<std::size_t> peaks;
+  for (std::size_t b = 0; b < bins; ++b)
+    if ((b == 0 || gain[b] >= gain[b - 1]) && (b + 1 == bins || gain[b] > gain[b + 1])) peaks.push_back(b);
+  std::sort(peaks.begin(), peaks.end(), [&](std::size_t x, std::size_t y) { return gain[x] > gain[y]; });
+  if (peaks.size() > FREQUENCIES) peaks.resize(FREQUENCIES);
+
+  // Candidates on those frequencies: every breakaway time t_b on the record's grid, each with
+  // the loads and onsets the layout allows. For each frequency the tail's correlation with r
+  // at every t_b at once: the sliding matched filter C(t_b) = sum_tau r(t_b + tau) E(tau)
+  // e^{-i omega tau}, a cross-correlation by FFT.
+  struct Rough {
+    AtomParameters atom;
+    double score;
+  };
+  std::vector<Rough> rough;
+  const std::size_t sliding = fft_->sliding;
+  for (std::size_t j = 0; j < sliding; ++j) fft_->a[j][0] = j < samples ? r[j] : 0.0, fft_->a[j][1] = 0.0;
+  fftw_execute_dft(fft_->forward, fft_->a, fft_->record);
+  std::vector<std::complex<double>> matched(samples);
+  const double inverse_length = 1.0 / static_cast<double>(sliding);
+  // The plateau's and the tail's energies and correlations, from prefix sums.
+  auto add_candidate = [&](const AtomParameters& atom, double pi, double phi, std::size_t b_index) {
+    const std::size_t on = std::min(samples, index_of(atom.onset_s));
+    const std::size_t off = std::min(samples - 1, b_index);
+    const double a_b = std::min(1.0, pi);  // the velocity amplitude at breakaway [v_b]
+    const double tail = a_b * scale * std::real(std::polar(1.0, phi) * std::conj(matched[off]));
+    const double plateau = pi > 1.0 && off > on ? scale * (prefix[off] - prefix[on]) : 0.0;
+    const double energy = scale * scale * ((pi > 1.0 && off > on ? static_cast<double>(off - on) : 0.0) +
+                                           0.5 * a_b * a_b * envelope_energy_[samples - off]);
+    rough.push_back({atom, 2.0 * amplitude * (tail + plateau) - amplitude * amplitude * energy});
+  };
+  for (std::size_t peak : peaks) {
+    const double omega_bin = bin_rad_per_s * static_cast<double>(first_bin_ + peak);
+    const double k = std::clamp(m * (omega_bin * omega_bin + d * d), lib.min_stiffness(), lib.max_stiffness());
+    const double omega0 = std::sqrt(k / m);
+    AtomParameters nominal{k, layout_.nominal_load_n * (layout_.load_shared ? load_factor : 1.0), layout_.onset_min_s};
+    const double omega = atom_model.tail_angular_frequency(nominal, d);
+    // K(tau) = E(tau) e^{i omega tau}; C = IFFT(FFT(r) conj(FFT(K))).
+    for (std::size_t j = 0; j < sliding; ++j) {
+      if (j < samples) {
+        const double phase = omega * h * static_cast<double>(j);
+        fft_->a[j][0] = envelope_[j] * std::cos(phase), fft_->a[j][1] = envelope_[j] * std::sin(phase);
+      } else {
+        fft_->a[j][0] = fft_->a[j][1] = 0.0;
+      }
+    }
+    fftw_execute_dft(fft_->forward, fft_->a, fft_->b);
+    for (std::size_t j = 0; j < sliding; ++j) {
+      const std::complex<double> x(fft_->record[j][0], fft_->record[j][1]), y(fft_->b[j][0], fft_->b[j][1]);
+      const std::complex<double> z = x * std::conj(y);
+      fft_->a[j][0] = z.real(), fft_->a[j][1] = z.imag();
+    }
+    fftw_execute_dft(fft_->backward, fft_->a, fft_->b);
+    for (std::size_t j = 0; j < samples; ++j) matched[j] = std::complex<double>(fft_->b[j][0], fft_->b[j][1]) * inverse_length;
+    std::vector<double> loads;
+    if (layout_.load_per_atom) loads = loads_grid_;
+    else loads.push_back(nominal.load_n);
+    for (double load : loads) {
+      AtomParameters atom{k, load, layout_.onset_min_s};
+      const double pi = atom_model.carried_phase(atom);
+      const ShapeWeights w = lib.shapes().weights(pi, d / omega0);
+      const double carried = w.theta_b / omega0;  // onset to breakaway [s]
+      if (layout_.onset_free) {
+        // Every breakaway on the grid whose onset the prior allows.
+        const std::size_t first = index_of(layout_.onset_min_s + carried), last = index_of(layout_.onset_max_s + carried);
+        for (std::size_t b = first; b <= std::min(last, samples - 1); ++b) {
+          atom.onset_s = grid.at(b) - carried;
+          add_candidate(atom, pi, w.phi, b);
+        }
+      } else {
+        add_candidate(atom, pi, w.phi, index_of(atom.onset_s + carried));
+      }
+    }
+    if (layout_.load_per_atom && !layout_.onset_free) {
+      // The onset known, each breakaway time is a load: theta_b(Pi) = omega0 (t_b - t_on) for
+      // Pi > 1 (monotone), on the grid between the lightest and the heaviest load's.
+      AtomParameters light{k, loads_grid_.front(), layout_.onset_min_s}, heavy{k, loads_grid_.back(), layout_.onset_min_s};
+      const std::size_t first = index_of(atom_model.breakaway_time(light, d)), last = index_of(atom_model.breakaway_time(heavy, d));
+      double pi_guess = std::max(1.0, atom_model.carried_phase(light));
+      for (std::size_t b = first; b <= std::min(last, samples - 1); ++b) {
+        const double target = omega0 * (grid.at(b) - layout_.onset_min_s);
+        // Newton on theta_b(Pi) - target, d theta_b / d Pi = sqrt(Pi^2 - 1) / Pi.
+        double pi = std::max(pi_guess, 1.0 + 1e-9);
+        for (int it = 0; it < 20; ++it) {
+          const double f = AtomShapes::breakaway_phase(pi, d / omega0) - target;
+          const double slope = std::sqrt(std::max(pi * pi - 1.0, 1e-12)) / pi;
+          pi = std::max(1.0 + 1e-9, pi - f / slope);
+          if (std::abs(f) < 1e-9) break;
+        }
+        pi_guess = pi;
+        AtomParameters atom{k, pi * m * omega0 * device.model.belt_velocity_m_per_s / lib.ratios().reference(), layout_.onset_min_s};
+        const ShapeWeights w = lib.shapes().weights(pi, d / omega0);
+        add_candidate(atom, pi, w.phi, b);
+      }
+    }
+  }
+  std::sort(rough.begin(), rough.end(), [](const Rough& x, const Rough& y) { return x.score > y.score; });
+  // The best distinct ones: neighbours on the grid (a breakaway a few samples on, a load a
+  // grid step away) are the same atom to the LM that follows.
   std::vector<LineCandidate> out;
-  for (std::size_t b = 0; b < bins; ++b) {
-    const bool left = b == 0 || score[b] >= score[b - 1];
-    const bool right = b + 1 == bins || score[b] > score[b + 1];
-    if (left && right) out.push_back({bin_stiffness_[b], score[b]});
+  std::vector<AtomParameters> kept;
+  for (std::size_t i = 0; i < rough.size() && out.size() < std::max(count, EXACT); ++i) {
+    const AtomParameters& a = rough[i].atom;
+    const double period = 2.0 * PI / std::sqrt(a.stiffness_n_per_m / m);
+    bool close = false;
+    for (const AtomParameters& b : kept)
+      close = close || (std::abs(std::log(a.stiffness_n_per_m / b.stiffness_n_per_m)) < 1e-3 &&
+                        std::abs(a.onset_s - b.onset_s) < 0.5 * period && std::abs(std::log(a.load_n / b.load_n)) < 0.15);
+    if (close) continue;
+    kept.push_back(a);
+    out.push_back(score(a, r, amplitude, d));
   }
-  std::sort(out.begin(), out.end(), [](const LineCandidate& a, const LineCandidate& b) { return a.score_v2 > b.score_v2; });
+  std::sort(out.begin(), out.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
   if (out.size() > count) out.resize(count);
   return out;
 }

@@ -1,52 +1,64 @@
 #pragma once
-//! Where one more atom would explain a residual best, for every stiffness at once: the
-//! proposals of the line search (docs/inverse.md, "search").
+//! Where one more atom would explain a residual best (docs/inverse.md, "the search").
 //!
-//! Adding atom g_k to a fit with residual r lowers the squared residual by
-//! score(k) = 2 <r, g_k> - |g_k|^2. An atom's tail is E(t) cos(omega_k t + phi_k) with the
-//! device's one envelope E, so <r, g_k> ~ Re[e^{i phi_k} conj(C(omega_k))] with
-//! C(omega) = sum_m r_m E(t_m) e^{-i omega t_m}: one zero-padded FFT of r E gives it on a
-//! fine frequency grid (1/(8T)). The belt-carried plateau before breakaway is left out
-//! (every atom has one: it tells the count, not where the line is). The map is approximate
-//! (the envelope's start is shifted by a few percent); the caller refines the best
-//! candidates with exact atoms.
+//! Adding atom g to a fit with residual r and amplitude a lowers the squared residual by
+//! 2 a <r, g> - a^2 |g|^2. An atom is a belt-carried plateau from its onset t_on to its
+//! breakaway t_b, then a tail ~ A(t - t_b) cos(omega (t - t_b) + phi) on the envelope A of its
+//! load and damping. So <r, g> is approximated, for every candidate at once, by
+//!  - the plateau's share: prefix sums of r between t_on and t_b;
+//!  - the tail's: Re[e^{i (phi - omega t_b)} conj(C_s(omega))] e^{d (t_b - T_s)}, with
+//!    C_s = FFT of r(t) E(t - T_s) over t >= T_s (E the device's nominal envelope, T_s on a
+//!    grid of tail starts half an envelope decay apart): one zero-padded FFT per start gives
+//!    every frequency;
+//! and the candidates are the stiffnesses of the map's best frequencies, each with the loads
+//! and onsets the prior allows whose breakaway puts the tail in phase with C (t_b where
+//! phi - omega t_b = arg C mod 2 pi). The best of them by this estimate are scored exactly
+//! (their atoms evaluated), and returned best first.
 #include <cstddef>
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "inverse/atom_table.hpp"
+#include "inverse/fit_layout.hpp"
+#include "inverse/load_prior.hpp"
+#include "inverse/record_model.hpp"
 
 namespace stengmc {
 
 struct LineCandidate {
-  double stiffness_n_per_m = 0.0;
-  double score_v2 = 0.0;  //!< estimated decrease of the squared residual [V^2]
+  AtomParameters atom;
+  double score_v2 = 0.0;   //!< exact decrease of the squared residual [V^2]
+  double energy_v2 = 0.0;  //!< the atom's own energy a^2 |g|^2 [V^2]
 };
 
 class LineProposals {
  public:
   //! @param padding FFT length >= padding x samples (frequency grid 1 / (padding T))
-  explicit LineProposals(const AtomTable& atoms, std::size_t padding = 8);
+  LineProposals(const RecordModel& model, const FitLayout& layout, const LoadPrior& loads, std::size_t padding = 4);
   ~LineProposals();
   LineProposals(const LineProposals&) = delete;
   LineProposals& operator=(const LineProposals&) = delete;
 
-  //! The local maxima of the tails' score over the frequency grid, best first, at most `count`.
-  std::vector<LineCandidate> propose(std::span<const double> residual, std::size_t count);
+  //! At most `count` candidates for one more atom on the (raw) residual `r` of a fit with
+  //! amplitude a, damping rate d and shared load factor, best first by exact score.
+  std::vector<LineCandidate> propose(std::span<const double> residual, double amplitude, double damping_rate,
+                                     double load_factor, std::size_t count);
 
-  //! |g_k|^2 [V^2], interpolated from a table over ln k.
-  [[nodiscard]] double atom_energy(double stiffness_n_per_m) const;
+  //! The exact score 2 a <r, g> - a^2 |g|^2 of one atom, and its energy.
+  LineCandidate score(const AtomParameters& atom, std::span<const double> residual, double amplitude, double damping_rate) const;
 
  private:
   struct Fft;
-  const AtomTable* atoms_;
-  std::size_t length_ = 0;            // FFT length
+  const RecordModel* model_;
+  FitLayout layout_;
+  const LoadPrior* loads_;
+  std::size_t length_ = 0;
   std::unique_ptr<Fft> fft_;
-  std::vector<double> weight_;        // E(t_m)
+  std::vector<double> envelope_;        // E(j h) of the nominal atom, from its breakaway
+  std::vector<double> envelope_energy_; // sum_{i < j} E(i h)^2
+  std::vector<double> starts_s_;        // tail starts T_s
   std::size_t first_bin_ = 0, last_bin_ = 0;
-  std::vector<double> bin_stiffness_, bin_phase_, bin_energy_, bin_breakaway_;
-  std::vector<double> energy_log_k_, energy_table_;
+  std::vector<double> loads_grid_;      // candidate loads when each atom has its own [N]
 };
 
 }  // namespace stengmc

@@ -2,191 +2,180 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/error.hpp"
 
 namespace stengmc {
 
-LineSearch::LineSearch(const RecordModel& model, LineProposals& proposals, std::span<const double> record,
-                       const LineSearchOptions& options)
-    : model_(&model), proposals_(&proposals), record_(record), options_(options) {
-  if (record.size() != model.samples()) throw Error("LineSearch: the record and the model's grid differ in length");
-}
+namespace {
+// Atoms within this many line widths of a new one, or breaking away within this time of it
+// (their plateaus and first cycles overlap), are refitted with it on the greedy path.
+constexpr double NEIGHBOURHOOD_WIDTHS = 8.0;
+constexpr double NEIGHBOURHOOD_TIME_S = 2e-6;
+}  // namespace
 
-std::vector<double> LineSearch::residual(std::span<const double> k) const {
-  std::vector<double> r(record_.size());
-  residual_norm(k, nullptr, r);
-  return r;
-}
+LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options)
+    : fit_(&fit), proposals_(&proposals), options_(options) {}
 
-double LineSearch::residual_norm(std::span<const double> k, Eigen::MatrixXd* jacobian, std::vector<double>& r) const {
-  r.resize(record_.size());
-  model_->evaluate(k, r, jacobian);
-  double sum = 0.0;
-  for (std::size_t m = 0; m < r.size(); ++m) {
-    r[m] = record_[m] - r[m];
-    sum += r[m] * r[m];
+std::vector<bool> LineSearch::neighbours(const FitState& state) const {
+  const AtomModel& model = fit_->model().atoms().model();
+  const double d = state.damping_rate_per_s;
+  const AtomParameters& added = state.atoms.back();
+  const double omega = model.tail_angular_frequency(added, d);
+  const double t_b = model.breakaway_time(added, d);
+  // A line width d/pi is 2 d / omega in ln omega, twice that in ln k (the friction's share of
+  // the damping counted too).
+  const double width = 4.0 * (d + fit_->model().atoms().ratios().linear_damping() * model.carried_phase(added) *
+                                      std::sqrt(added.stiffness_n_per_m / model.device().asperity.mass_kg)) / omega;
+  const bool timed = fit_->layout().onset_free || fit_->layout().load_per_atom;
+  std::vector<bool> active(state.atoms.size());
+  for (std::size_t i = 0; i < state.atoms.size(); ++i) {
+    const AtomParameters& a = state.atoms[i];
+    active[i] = std::abs(std::log(a.stiffness_n_per_m / added.stiffness_n_per_m)) < NEIGHBOURHOOD_WIDTHS * width ||
+                (timed && std::abs(model.breakaway_time(a, d) - t_b) < NEIGHBOURHOOD_TIME_S);
   }
-  return sum;
+  active.back() = true;
+  return active;
 }
 
-OrderFit LineSearch::refine(std::vector<double> k, const std::vector<bool>& active, bool normal_matrix) {
-  OrderFit fit;
-  const std::size_t m_count = record_.size();
-  std::vector<std::size_t> moving;
-  for (std::size_t i = 0; i < k.size(); ++i)
-    if (active.empty() || active[i]) moving.push_back(i);
-  const auto n = static_cast<Eigen::Index>(moving.size());
-  const double lo = std::log(model_->atoms().min_stiffness()), hi = std::log(model_->atoms().max_stiffness());
-  // The atoms that stay put are summed once.
-  AtomSums frozen;
-  frozen.reset(m_count);
-  for (std::size_t i = 0; i < k.size(); ++i)
-    if (!(active.empty() || active[i])) model_->add(k[i], frozen);
-  AtomSums sums;
-  std::vector<double> voltage(m_count);
-  // Squared residual at `trial` (the moving atoms' values), with their Jacobian columns.
-  auto evaluate = [&](const std::vector<double>& trial, Eigen::MatrixXd& jacobian, std::vector<double>& r) {
-    sums = frozen;
-    jacobian.resize(static_cast<Eigen::Index>(m_count), n);
-    for (Eigen::Index j = 0; j < n; ++j)
-      model_->add(trial[moving[static_cast<std::size_t>(j)]], sums, std::span<double>(jacobian.col(j).data(), m_count));
-    model_->voltage(sums, voltage);
-    r.resize(m_count);
-    double sum = 0.0;
-    for (std::size_t m = 0; m < m_count; ++m) {
-      r[m] = record_[m] - voltage[m];
-      sum += r[m] * r[m];
-    }
-    return sum;
-  };
-  std::vector<double> r, trial_r;
-  Eigen::MatrixXd jacobian, trial_jacobian;
-  double rss = evaluate(k, jacobian, r);
-  if (n > 0) {
-    double lambda = 1e-3;
-    std::vector<double> trial = k;
-    for (std::size_t iteration = 0; iteration < options_.max_iterations; ++iteration) {
-      fit.iterations = iteration + 1;
-      const Eigen::Map<const Eigen::VectorXd> residual_vector(r.data(), static_cast<Eigen::Index>(r.size()));
-      const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
-      const Eigen::VectorXd gradient = jacobian.transpose() * residual_vector;
-      bool accepted = false;
-      double step_size = 0.0;
-      while (lambda < 1e10) {
-        Eigen::MatrixXd damped = normal;
-        for (Eigen::Index i = 0; i < n; ++i) damped(i, i) += lambda * normal(i, i) + 1e-300;
-        const Eigen::VectorXd delta = damped.ldlt().solve(gradient);
-        step_size = delta.cwiseAbs().maxCoeff();
-        for (Eigen::Index j = 0; j < n; ++j) {
-          const std::size_t i = moving[static_cast<std::size_t>(j)];
-          trial[i] = std::exp(std::clamp(std::log(k[i]) + delta(j), lo, hi));
-        }
-        const double trial_rss = evaluate(trial, trial_jacobian, trial_r);
-        if (trial_rss < rss) {
-          const double gain = rss - trial_rss;
-          k = trial;
-          r.swap(trial_r);
-          jacobian.swap(trial_jacobian);
-          const double previous = rss;
-          rss = trial_rss;
-          lambda = std::max(lambda / 3.0, 1e-12);
-          accepted = true;
-          if (gain <= 1e-12 * previous) step_size = 0.0;  // converged
-          break;
-        }
-        lambda *= 4.0;
-      }
-      if (!accepted || step_size < 1e-10) break;
-    }
-  }
-  // Ascending order, the normal matrix permuted with it.
-  std::vector<std::size_t> order(k.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return k[a] < k[b]; });
-  fit.residual_v2 = rss;
-  fit.stiffness_n_per_m.resize(k.size());
-  for (std::size_t i = 0; i < order.size(); ++i) fit.stiffness_n_per_m[i] = k[order[i]];
-  if (normal_matrix && !k.empty()) {
-    Eigen::MatrixXd full;
-    model_->evaluate(fit.stiffness_n_per_m, voltage, &full);
-    fit.normal_matrix = full.transpose() * full;
-  }
-  return fit;
-}
-
-double LineSearch::exact_score(double k, std::span<const double> residual) const {
-  std::vector<double> atom(residual.size());
-  model_->atoms().evaluate(k, atom);
-  double dot = 0.0, energy = 0.0;
-  for (std::size_t m = 0; m < atom.size(); ++m) {
-    dot += residual[m] * atom[m];
-    energy += atom[m] * atom[m];
-  }
-  return 2.0 * dot - energy;
-}
-
-LineCandidate LineSearch::best_addition(std::span<const double> residual) {
-  const std::vector<LineCandidate> candidates = proposals_->propose(residual, options_.candidates);
-  LineCandidate best{model_->atoms().min_stiffness(), -INFINITY};
-  const double lo = std::log(model_->atoms().min_stiffness()), hi = std::log(model_->atoms().max_stiffness());
-  const double d = model_->atoms().device().damping_rate_per_s();
-  for (const LineCandidate& c : candidates) {
-    // Golden-section search of the exact score in ln k over +-2 line widths (d / pi in f:
-    // 2 d / omega in ln omega, twice that in ln k) around the proposal.
-    const double omega = model_->atoms().device().angular_frequency(c.stiffness_n_per_m);
-    const double half_width = 2.0 * 2.0 * (2.0 * d / omega);
-    double a = std::max(lo, std::log(c.stiffness_n_per_m) - half_width);
-    double b = std::min(hi, std::log(c.stiffness_n_per_m) + half_width);
+LineCandidate LineSearch::best_addition(const OrderFit& fit) {
+  FitState state = fit.state;
+  const std::vector<double> r = fit_->residual(state);
+  const std::vector<LineCandidate> candidates =
+      proposals_->propose(r, state.amplitude, state.damping_rate_per_s, state.load_factor, options_.candidates);
+  const AtomLibrary& lib = fit_->model().atoms();
+  const double lo = std::log(lib.min_stiffness()), hi = std::log(lib.max_stiffness());
+  const double d = state.damping_rate_per_s;
+  LineCandidate best{{}, -INFINITY, 0.0};
+  for (std::size_t c = 0; c < candidates.size() && c < 2; ++c) {
+    // Golden-section search of the exact score in ln k over +-1 line width (the proposals'
+    // frequency grid is a tenth of one), load and onset held.
+    AtomParameters atom = candidates[c].atom;
+    const double omega = lib.model().tail_angular_frequency(atom, d);
+    const double half_width = 2.0 * 2.0 * d / omega + 1e-4;
+    double a = std::max(lo, std::log(atom.stiffness_n_per_m) - half_width);
+    double b = std::min(hi, std::log(atom.stiffness_n_per_m) + half_width);
+    auto score_at = [&](double x) {
+      AtomParameters trial = atom;
+      trial.stiffness_n_per_m = std::exp(x);
+      return proposals_->score(trial, r, state.amplitude, d);
+    };
     constexpr double GOLDEN = 0.6180339887498949;
     double x1 = b - GOLDEN * (b - a), x2 = a + GOLDEN * (b - a);
-    double f1 = exact_score(std::exp(x1), residual), f2 = exact_score(std::exp(x2), residual);
-    // 10 steps shrink the bracket to 0.8 % of its width, 0.03 line widths: enough for a start
-    // the joint fit then polishes.
-    for (int iteration = 0; iteration < 10; ++iteration) {
-      if (f1 > f2) {
+    LineCandidate f1 = score_at(x1), f2 = score_at(x2);
+    for (int iteration = 0; iteration < 8; ++iteration) {
+      if (f1.score_v2 > f2.score_v2) {
         b = x2, x2 = x1, f2 = f1;
         x1 = b - GOLDEN * (b - a);
-        f1 = exact_score(std::exp(x1), residual);
+        f1 = score_at(x1);
       } else {
         a = x1, x1 = x2, f1 = f2;
         x2 = a + GOLDEN * (b - a);
-        f2 = exact_score(std::exp(x2), residual);
+        f2 = score_at(x2);
       }
     }
-    const double x = f1 > f2 ? x1 : x2;
-    const double score = std::max(f1, f2);
-    if (score > best.score_v2) best = {std::exp(x), score};
+    const LineCandidate& refined = f1.score_v2 > f2.score_v2 ? f1 : f2;
+    const LineCandidate& chosen = refined.score_v2 > candidates[c].score_v2 ? refined : candidates[c];
+    if (chosen.score_v2 > best.score_v2) best = chosen;
   }
   return best;
 }
 
-std::vector<OrderFit> LineSearch::search(std::size_t max_count, std::size_t min_count) {
+std::vector<OrderFit> LineSearch::search(const FitState& start, std::size_t max_count, std::size_t min_count) {
   std::vector<OrderFit> fits;
-  fits.push_back(refine({}));
+  FitState empty = start;
+  empty.atoms.clear();
+  fits.push_back(fit_->refine(empty, {}, true, false, options_.max_iterations));
   std::size_t stop = max_count;  // the greedy count; fits go on extra_orders beyond it
-  const double d = model_->atoms().device().damping_rate_per_s();
   for (std::size_t n = 1; n <= max_count && (n <= stop + options_.extra_orders || n <= min_count); ++n) {
-    const OrderFit& previous = fits.back();
-    const LineCandidate best = best_addition(residual(previous.stiffness_n_per_m));
-    std::vector<double> k = previous.stiffness_n_per_m;
-    k.push_back(best.stiffness_n_per_m);
-    // The new atom and its neighbours move: a line width d / pi is 2 d / omega in ln omega,
-    // twice that in ln k.
-    const double window = NEIGHBOURHOOD_WIDTHS * 4.0 * d / model_->atoms().device().angular_frequency(best.stiffness_n_per_m);
-    std::vector<bool> active(k.size());
-    for (std::size_t i = 0; i < k.size(); ++i) active[i] = std::abs(std::log(k[i] / best.stiffness_n_per_m)) < window;
-    fits.push_back(refine(std::move(k), active, false));
+    const LineCandidate best = best_addition(fits.back());
+    if (best.energy_v2 <= 0.0) break;  // no candidate at all (nothing in the band)
+    FitState state = fits.back().state;
+    state.atoms.push_back(best.atom);
+    const std::vector<bool> active = neighbours(state);
+    fits.push_back(fit_->refine(std::move(state), active, false, false, options_.max_iterations));
+    if (std::getenv("STENGMC_DEBUG_SEARCH")) {
+      std::fprintf(stderr, "n=%zu add k %.3f N %.3g on %.3f us score %.4g energy %.4g -> rss %.4g\n", n, best.atom.stiffness_n_per_m,
+                   best.atom.load_n, 1e6 * best.atom.onset_s, best.score_v2, best.energy_v2, fits.back().residual_v2);
+      for (const AtomParameters& a : fits.back().state.atoms)
+        std::fprintf(stderr, "    k %.3f N %.3g on %.3f\n", a.stiffness_n_per_m, a.load_n, 1e6 * a.onset_s);
+    }
     // Judged on the joint refit, not on the addition alone: an atom that only becomes
     // useful once its neighbours move is still found.
     const double gain = fits[n - 1].residual_v2 - fits[n].residual_v2;
-    if (stop == max_count && gain < options_.stop_fraction * proposals_->atom_energy(best.stiffness_n_per_m))
-      stop = n - 1;
+    if (stop == max_count && gain < options_.stop_fraction * best.energy_v2) stop = n - 1;
   }
-  // The orders the posterior weighs, refitted in full (none below min_count: it weighs none).
-  for (std::size_t n = std::max(stop > 0 ? stop - 1 : 0, min_count); n < fits.size(); ++n)
-    if (n > 0) fits[n] = refine(fits[n].stiffness_n_per_m);
+  const std::size_t first = std::max(stop > 0 ? stop - 1 : 0, min_count);
+  for (std::size_t n = first; n < fits.size(); ++n) reseat(fits[n], options_.reseat_sweeps);
+  refit(fits, first);
   return fits;
+}
+
+void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
+  const std::size_t samples = fit_->record().size();
+  const double s2 = fit_->sigma_v() * fit_->sigma_v();
+  for (std::size_t sweep = 0; sweep < sweeps; ++sweep) {
+    bool improved = false;
+    for (std::size_t i = 0; i < fit.state.atoms.size(); ++i) {
+      if (fit.residual_v2 < options_.reseat_misfit * static_cast<double>(samples) * s2) return;
+      FitState without = fit.state;
+      const AtomParameters own = without.atoms[i];
+      without.atoms.erase(without.atoms.begin() + static_cast<std::ptrdiff_t>(i));
+      const std::vector<double> r = fit_->residual(without);
+      const double d = without.damping_rate_per_s;
+      const LineCandidate current = proposals_->score(own, r, without.amplitude, d);
+      const std::vector<LineCandidate> candidates = proposals_->propose(r, without.amplitude, d, without.load_factor, 2);
+      for (const LineCandidate& c : candidates) {
+        if (!(c.score_v2 > current.score_v2)) continue;
+        FitState trial = without;
+        trial.atoms.push_back(c.atom);
+        const std::vector<bool> active = neighbours(trial);
+        OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+        if (refitted.residual_v2 < fit.residual_v2) {
+          if (std::getenv("STENGMC_DEBUG_SEARCH"))
+            std::fprintf(stderr, "reseat k %.3f on %.3f -> k %.3f on %.3f: rss %.4g -> %.4g\n", own.stiffness_n_per_m,
+                         1e6 * own.onset_s, c.atom.stiffness_n_per_m, 1e6 * c.atom.onset_s, fit.residual_v2, refitted.residual_v2);
+          fit = std::move(refitted);
+          improved = true;
+          break;
+        }
+      }
+    }
+    // Pairs of close lines with each other's onsets and loads: a greedy path can give two
+    // asperities of nearly one frequency each other's plateaus, which moving either alone
+    // cannot undo.
+    const AtomModel& model = fit_->model().atoms().model();
+    for (std::size_t i = 0; i < fit.state.atoms.size(); ++i)
+      for (std::size_t j = i + 1; j < fit.state.atoms.size(); ++j) {
+        if (fit.residual_v2 < options_.reseat_misfit * static_cast<double>(samples) * s2) return;
+        const AtomParameters& a = fit.state.atoms[i];
+        const AtomParameters& b = fit.state.atoms[j];
+        const double d = fit.state.damping_rate_per_s;
+        const double width = 4.0 * d / model.tail_angular_frequency(a, d);
+        if (std::abs(std::log(a.stiffness_n_per_m / b.stiffness_n_per_m)) > NEIGHBOURHOOD_WIDTHS * width) continue;
+        if (!fit_->layout().onset_free && !fit_->layout().load_per_atom) continue;
+        FitState trial = fit.state;
+        std::swap(trial.atoms[i].onset_s, trial.atoms[j].onset_s);
+        std::swap(trial.atoms[i].load_n, trial.atoms[j].load_n);
+        std::vector<bool> active(trial.atoms.size(), false);
+        active[i] = active[j] = true;
+        OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+        if (refitted.residual_v2 < fit.residual_v2) {
+          if (std::getenv("STENGMC_DEBUG_SEARCH"))
+            std::fprintf(stderr, "swap %zu %zu: rss %.4g -> %.4g\n", i, j, fit.residual_v2, refitted.residual_v2);
+          fit = std::move(refitted);
+          improved = true;
+        }
+      }
+    if (!improved) return;
+  }
+}
+
+void LineSearch::refit(std::vector<OrderFit>& fits, std::size_t first) {
+  // Every order from `first` on, in full: all atoms and the device's shared parameters.
+  for (std::size_t n = first; n < fits.size(); ++n) fits[n] = fit_->refine(fits[n].state, {}, true, true, options_.max_iterations);
 }
 
 }  // namespace stengmc

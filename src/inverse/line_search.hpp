@@ -1,74 +1,65 @@
 #pragma once
-//! The search for the stiffnesses of n sliding asperities, for every n near the best one
-//! (docs/inverse.md, "search").
+//! The search for the atoms of n sliding asperities, for every n near the best one
+//! (docs/inverse.md, "the search").
 //!
-//! Each atom has a fixed amplitude and phase (the known device fixes both for a given k), so
-//! a record is fitted by choosing the k_i alone: greedy additions (the best-scoring
-//! proposal, refined with exact atoms) each followed by a joint Levenberg–Marquardt fit of
-//! every ln k_i (Levenberg 1944, Marquardt 1963; Nocedal & Wright, Numerical Optimization,
-//! 2nd ed., §10.3). Two asperities too close to tell apart add up to twice an atom, which
-//! no single atom explains: the count stays identifiable where frequency resolution is
-//! lost, and the greedy step adds the second one. Along the greedy path only the new atom and
-//! its neighbours (within 8 line widths) are refitted; the orders the posterior weighs (the
-//! greedy count -1 .. +extra) are then refitted in full.
-#include <Eigen/Dense>
+//! Each atom's amplitude and phase follow from its stiffness, load and onset and the known
+//! device, so a record is fitted by choosing those alone: greedy additions (the best proposal,
+//! line_proposals.hpp) each followed by a Levenberg–Marquardt fit (record_fit.hpp) of the new
+//! atom and its neighbours — within 8 line widths in frequency, or breaking away within a
+//! few microseconds of it. Two asperities too close to tell apart add up to twice an atom,
+//! which no single atom explains: the count stays identifiable where frequency resolution is
+//! lost, and the greedy step adds the second one. The orders the posterior weighs (the greedy
+//! count -1 .. +extra) are then refitted in full, the device's shared parameters with them.
 #include <span>
 #include <vector>
 
 #include "inverse/line_proposals.hpp"
-#include "inverse/record_model.hpp"
+#include "inverse/record_fit.hpp"
 
 namespace stengmc {
 
-//! The best fit found with a given number of atoms.
-struct OrderFit {
-  std::vector<double> stiffness_n_per_m;  //!< ascending [N/m]
-  double residual_v2 = 0.0;               //!< sum of squared residuals [V^2]
-  //! J^T J of the fit in ln k, same order [V^2]; empty for orders fitted only along the greedy
-  //! path (far from the count the search settled on: their evidence is negligible)
-  Eigen::MatrixXd normal_matrix;
-  std::size_t iterations = 0;             //!< Levenberg–Marquardt iterations of the last refinement
-};
-
 struct LineSearchOptions {
   std::size_t max_iterations = 60;   //!< per Levenberg–Marquardt refinement
-  //! The greedy path stops when the best addition would lower the squared residual by less
-  //! than this fraction of its atom's energy (a true atom lowers it by about its energy,
-  //! one that is not there raises it by as much).
+  //! The greedy path stops when the best addition, jointly refitted, lowers the squared
+  //! residual by less than this fraction of its atom's energy (a true atom lowers it by about
+  //! its energy, one that is not there raises it by as much).
   double stop_fraction = 0.25;
   std::size_t extra_orders = 2;      //!< orders fitted past the greedy stop (for the count's posterior)
-  std::size_t candidates = 4;        //!< proposals refined with exact atoms at each step
+  std::size_t candidates = 4;        //!< proposals tried at each step
+  //! A fit whose whitened residual exceeds this many times the noise's (RSS / M sigma^2) has
+  //! its atoms re-seated (reseat) before the final refits; an order that fits to the noise
+  //! is not worth the cost.
+  double reseat_misfit = 1.5;
+  std::size_t reseat_sweeps = 2;
 };
 
 class LineSearch {
  public:
-  LineSearch(const RecordModel& model, LineProposals& proposals, std::span<const double> record,
-             const LineSearchOptions& options = {});
-
-  //! Levenberg–Marquardt fit of the ln k_i from `k` [N/m]: all of them, or only those
-  //! `active` marks (the others stay where they are). With `normal_matrix`, the fit's J^T J
-  //! over all atoms is computed at the end.
-  OrderFit refine(std::vector<double> k, const std::vector<bool>& active = {}, bool normal_matrix = true);
+  LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options = {});
 
   //! Fits for n = 0 (no atom) along the greedy path to its stop, then `extra_orders` more,
-  //! and on to `min_count` at least (a prior's smallest count: the posterior weighs no order
-  //! below it), never beyond `max_count`: index n of the result holds the fit with n atoms.
-  std::vector<OrderFit> search(std::size_t max_count, std::size_t min_count = 0);
+  //! and on to `min_count` at least, never beyond `max_count`: index n holds the fit with n
+  //! atoms; those from the greedy count -1 on are refitted in full (shared parameters too).
+  //! `start` holds the shared parameters to begin with (its atoms are ignored).
+  std::vector<OrderFit> search(const FitState& start, std::size_t max_count, std::size_t min_count = 0);
 
-  //! The record minus the model of `k`.
-  std::vector<double> residual(std::span<const double> k) const;
+  //! The refits in full of `fits` from index `first` on (after the noise model changed).
+  void refit(std::vector<OrderFit>& fits, std::size_t first);
 
  private:
-  //! Exact decrease of the squared residual if atom k were added to a fit with residual r.
-  double exact_score(double k, std::span<const double> residual) const;
-  LineCandidate best_addition(std::span<const double> residual);
-  double residual_norm(std::span<const double> k, Eigen::MatrixXd* jacobian, std::vector<double>& r) const;
-  //! Atoms within this many line widths of a new one are refitted with it on the greedy path.
-  static constexpr double NEIGHBOURHOOD_WIDTHS = 8.0;
+  //! The best addition to `fit`, refined in ln k by golden section on its exact score.
+  LineCandidate best_addition(const OrderFit& fit);
+  //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.
+  std::vector<bool> neighbours(const FitState& state) const;
+  //! Re-seats each atom in turn: removed, the best proposal on what it leaves, refitted with
+  //! its neighbours, kept when the fit improves. A greedy path can give an atom another's
+  //! onset, or its own a whole period off (the tail's phase alike, the plateau a little
+  //! apart), which no local fit undoes; with the other atoms in place the proposal sees its
+  //! atom alone. Up to `sweeps` passes, while one improves.
+  void reseat(OrderFit& fit, std::size_t sweeps);
 
-  const RecordModel* model_;
+  RecordFit* fit_;
   LineProposals* proposals_;
-  std::span<const double> record_;
   LineSearchOptions options_;
 };
 

@@ -1,12 +1,14 @@
 #include "inverse/record_estimator.hpp"
 
 #include <algorithm>
-#include <ctime>
 #include <cmath>
+#include <ctime>
+#include <numeric>
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "inverse/sample_statistics.hpp"
+#include "spectral/amplitude_spectrum.hpp"
 
 namespace stengmc {
 
@@ -16,14 +18,22 @@ namespace {
 // quantile): a line's Lorentzian skirt, d / pi wide, is far below the noise there.
 constexpr double NOISE_BAND_MARGIN = 1.25;
 
+double mean_square(std::span<const double> v) {
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
 }  // namespace
 
-RecordEstimator::RecordEstimator(const AtomTable& atoms, const InversePrior& prior, const LineSearchOptions& options)
+RecordEstimator::RecordEstimator(const AtomLibrary& atoms, const InversePrior& prior, const LineSearchOptions& options)
     : atoms_(&atoms),
       prior_(prior),
+      loads_(prior),
+      layout_(fit_layout(prior, atoms.device(), loads_)),
       density_(prior),
       model_(atoms),
-      proposals_(atoms),
+      proposals_(model_, layout_, loads_),
       options_(options),
       noise_(atoms.grid().samples, atoms.grid().sample_rate_hz(),
              NOISE_BAND_MARGIN * atoms.device().angular_frequency(prior.support().second) / (2.0 * PI)) {
@@ -34,67 +44,142 @@ RecordEstimator::RecordEstimator(const AtomTable& atoms, const InversePrior& pri
   band_high_hz_ = atoms.device().angular_frequency(high) / (2.0 * PI);
 }
 
+ResidualChecks RecordEstimator::residual_checks(const RecordFit& fit, FitState state) const {
+  ResidualChecks c;
+  std::vector<double> r = fit.residual(state);
+  fit.whitener().apply(r, r);
+  const double s2 = fit.sigma_v() * fit.sigma_v();
+  const std::size_t m = r.size();
+  c.misfit = mean_square(r) / s2;
+  // Over time: the span where the asperities break away, and the record's last third.
+  const RecordGrid& grid = atoms_->grid();
+  double last_breakaway = grid.start_s;
+  for (const AtomParameters& a : state.atoms)
+    last_breakaway = std::max(last_breakaway, atoms_->model().breakaway_time(a, state.damping_rate_per_s));
+  const auto early_end = std::min(m, static_cast<std::size_t>(std::ceil((last_breakaway + 2e-6 - grid.start_s) / grid.step_s)));
+  c.early = mean_square(std::span<const double>(r.data(), std::max<std::size_t>(early_end, 1))) / s2;
+  c.late = mean_square(std::span<const double>(r.data() + 2 * m / 3, m - 2 * m / 3)) / s2;
+  // Over frequency: the (whitened) residual's Hann periodogram, white at sigma^2 when the model fits.
+  SpectrumAnalyzer analyzer(m, WindowKind::hann);
+  const AmplitudeSpectrum s = analyzer.analyse(r, grid.sample_rate_hz());
+  const std::vector<double>& w = analyzer.window();
+  const double sum = std::accumulate(w.begin(), w.end(), 0.0), squares = std::inner_product(w.begin(), w.end(), w.begin(), 0.0);
+  const double to_power = sum * sum / (4.0 * squares);
+  double line = 0.0, low = 0.0;
+  std::size_t n_line = 0, n_low = 0;
+  for (std::size_t k = 1; k < s.frequency_hz.size(); ++k) {
+    const double p = s.amplitude[k] * s.amplitude[k] * to_power;
+    if (s.frequency_hz[k] >= band_low_hz_ && s.frequency_hz[k] <= band_high_hz_) line += p, ++n_line;
+    else if (s.frequency_hz[k] < band_low_hz_) low += p, ++n_low;
+  }
+  if (n_line) c.line_band = line / static_cast<double>(n_line) / s2;
+  if (n_low) c.low_band = low / static_cast<double>(n_low) / s2;
+  return c;
+}
+
 RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   // CPU time of this thread: wall time would count whatever else the machine runs.
   timespec cpu_start{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu_start);
   const std::size_t samples = atoms_->grid().samples;
-  if (voltage.size() != samples) throw Error("RecordEstimator: the record has another length than the atom table's grid");
+  if (voltage.size() != samples) throw Error("RecordEstimator: the record has another length than the atoms' grid");
   RecordEstimate out;
   out.noise = noise_.estimate(voltage);
 
-  LineSearch search(model_, proposals_, voltage, options_);
-  const std::vector<OrderFit> fits = search.search(prior_.count_max + 1, prior_.count_min);
-  for (const OrderFit& f : fits) out.fit_residual_v2.push_back(f.residual_v2);
-
-  // Noise for the evidence: the band's, else the residual of the largest fit; plus the model's
-  // own accuracy as a floor.
-  double mean_square = 0.0;
-  for (double v : voltage) mean_square += v * v / static_cast<double>(samples);
-  double sigma2 = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v
-                                     : fits.back().residual_v2 / static_cast<double>(samples - (fits.size() - 1));
-  sigma2 += MODEL_RELATIVE_ACCURACY * MODEL_RELATIVE_ACCURACY * mean_square;
-  // A record far below the device's amplitude (one scaled by 1e-200) squares to 0.
+  // The record's power without its mean (an offset is no signal) sets the model's floor.
+  const double mean = std::accumulate(voltage.begin(), voltage.end(), 0.0) / static_cast<double>(samples);
+  double power = 0.0;
+  for (double v : voltage) power += (v - mean) * (v - mean) / static_cast<double>(samples);
   const double floor_v = MIN_RELATIVE_NOISE * atoms_->device().voltage_scale_v();
-  sigma2 = std::max(sigma2, floor_v * floor_v);
-  out.sigma_v = std::sqrt(sigma2);
-  out.posterior = count_posterior(fits, out.sigma_v, prior_, density_);
-  if (out.posterior.counts.empty())
-    throw Error("RecordEstimator: no fit within the prior's count range (the search stopped early)");
+  auto with_floor = [&](double sigma2, double signal_power) {
+    return std::sqrt(std::max(sigma2 + MODEL_RELATIVE_ACCURACY * MODEL_RELATIVE_ACCURACY * signal_power, floor_v * floor_v));
+  };
+  // White noise first: the band above the lines, else the variance itself.
+  const double white2 = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v : power;
+  double sigma = with_floor(white2, power);
+
+  RecordFit fit(model_, layout_, loads_, voltage);
+  fit.set_noise(Whitener(), sigma);
+  LineSearch search(fit, proposals_, options_);
+  FitState start;
+  start.damping_rate_per_s = layout_.nominal_damping_rate;
+  std::vector<OrderFit> fits = search.search(start, prior_.count_max + 1, prior_.count_min);
+
+  if (layout_.coloured_noise) {
+    // The noise's spectrum from the residual of the count the white model prefers, then every
+    // order in the whitened space it gives (those near the count refitted).
+    const CountPosterior white = count_posterior(fits, sigma, prior_, density_, layout_, loads_);
+    FitState chosen = fits[white.best].state;
+    const std::vector<double> r = fit.residual(chosen);
+    out.spectrum = fit_noise_spectrum(r);
+    const Whitener whitener = whitener_of(out.spectrum, samples);
+    std::vector<double> whitened(voltage.begin(), voltage.end());
+    for (double& v : whitened) v -= mean;
+    whitener.apply(whitened, whitened);
+    const double innovation2 = whitener.innovation_sigma_v() * whitener.innovation_sigma_v();
+    sigma = with_floor(innovation2, std::max(0.0, mean_square(whitened) - innovation2));
+    fit.set_noise(whitener, sigma);
+    const std::size_t first = std::max(white.best > 0 ? white.best - 1 : 0, static_cast<std::size_t>(prior_.count_min));
+    for (std::size_t n = 0; n < first && n < fits.size(); ++n) fits[n].residual_v2 = fit.whitened_rss(fits[n].state);
+    search.refit(fits, first);
+  }
+  for (const OrderFit& f : fits) out.fit_residual_v2.push_back(f.residual_v2);
+  out.sigma_v = sigma;
+  out.posterior = count_posterior(fits, sigma, prior_, density_, layout_, loads_);
+  if (out.posterior.counts.empty()) throw Error("RecordEstimator: no fit within the prior's count range (the search stopped early)");
   out.count = out.posterior.best;
-  // The chosen order is normally among those refitted in full; if not, refit it now.
-  const OrderFit best = fits[out.count].normal_matrix.rows() == static_cast<Eigen::Index>(out.count)
+  const std::size_t parameters = out.count * layout_.per_atom() + (out.count > 0 ? layout_.shared() : 0);
+  const OrderFit best = fits[out.count].normal_matrix.rows() == static_cast<Eigen::Index>(parameters) || out.count == 0
                             ? fits[out.count]
-                            : search.refine(fits[out.count].stiffness_n_per_m);
-  out.residual_sigma_v = std::sqrt(best.residual_v2 / static_cast<double>(samples - out.count));
+                            : fit.refine(fits[out.count].state, {}, true, true, options_.max_iterations);
+  out.state = best.state;
+  out.residual_sigma_v = std::sqrt(best.residual_v2 / static_cast<double>(samples - std::min(samples - 1, parameters)));
   if (out.count + 1 < fits.size() && out.count == prior_.count_max) {
     const double gain = best.residual_v2 - fits[out.count + 1].residual_v2;
-    out.more_than_prior_allows = gain > 0.5 * proposals_.atom_energy(fits[out.count + 1].stiffness_n_per_m.back());
+    const LineCandidate extra = proposals_.score(fits[out.count + 1].state.atoms.back(), std::vector<double>(samples, 0.0),
+                                                 best.state.amplitude, best.state.damping_rate_per_s);
+    out.more_than_prior_allows = gain > 0.5 * extra.energy_v2;
   }
 
   // Lines and their standard errors: H^-1 with H as in the evidence (J^T J / sigma^2 plus the
-  // prior's curvature, so a coincident pair gets a wide but finite error).
-  const auto [low, high] = prior_.support(1e-3);
-  const double spread = std::max(0.05, std::log(high / low) / 6.0);
-  Eigen::MatrixXd h = best.normal_matrix / sigma2;
-  h.diagonal().array() += 1.0 / (spread * spread);
-  const Eigen::MatrixXd covariance = out.count > 0 ? Eigen::MatrixXd(h.inverse()) : Eigen::MatrixXd();
-  // Said here, not by a writer refusing a NaN later: a fit whose atoms change ~1e16 times
-  // more with ln k than the noise resolves leaves H singular to rounding.
-  if (!covariance.allFinite() || !std::all_of(best.stiffness_n_per_m.begin(), best.stiffness_n_per_m.end(),
-                                              [](double k) { return std::isfinite(k); }))
-    throw ModelError("the fit of " + std::to_string(out.count) + " atoms to the record is not finite (its stiffnesses or "
-                     "their errors): the record does not determine them; the known device is likely outside the "
-                     "regime the atoms model (a belt-carried stick, then a free oscillation)");
+  // prior's curvatures, so a coincident pair gets a wide but finite error).
+  Eigen::MatrixXd covariance;
+  if (out.count > 0) {
+    Eigen::MatrixXd h = best.normal_matrix / (sigma * sigma);
+    h.diagonal() += prior_curvatures(out.count, prior_, layout_, loads_);
+    covariance = h.inverse();
+    // Said here, not by a writer refusing a NaN later.
+    if (!covariance.allFinite())
+      throw ModelError("the fit of " + std::to_string(out.count) + " atoms to the record is not finite (its parameters or "
+                       "their errors): the record does not determine them; the known device is likely outside the "
+                       "regime the atoms model (a belt-carried stick, then a free oscillation)");
+  }
   const KnownDevice& device = atoms_->device();
+  const AtomModel& model = atoms_->model();
+  const std::size_t per_atom = layout_.per_atom();
+  const double d = best.state.damping_rate_per_s;
+  std::vector<double> k_values;
   for (std::size_t i = 0; i < out.count; ++i) {
+    const AtomParameters& a = best.state.atoms[i];
     EstimatedLine line;
-    line.stiffness_n_per_m = best.stiffness_n_per_m[i];
-    line.log_stiffness_se = std::sqrt(std::max(0.0, covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
-    line.frequency_hz = device.angular_frequency(line.stiffness_n_per_m) / (2.0 * PI);
-    line.amplitude_v = device.voltage_scale_v();
+    const auto base = static_cast<Eigen::Index>(i * per_atom);
+    line.stiffness_n_per_m = a.stiffness_n_per_m;
+    line.log_stiffness_se = std::sqrt(std::max(0.0, covariance(base, base)));
+    line.frequency_hz = model.tail_angular_frequency(a, d) / (2.0 * PI);
+    line.amplitude_v = best.state.amplitude * model_.volts_per_unit() * std::min(1.0, model.carried_phase(a));
+    line.load_n = a.load_n;
+    Eigen::Index next = base + 1;
+    if (layout_.load_per_atom) line.log_load_se = std::sqrt(std::max(0.0, covariance(next, next))), ++next;
+    else if (layout_.load_shared) {
+      const auto shared = static_cast<Eigen::Index>(out.count * per_atom + (layout_.damping_free ? 1 : 0));
+      line.log_load_se = std::sqrt(std::max(0.0, covariance(shared, shared)));
+    }
+    line.onset_s = a.onset_s;
+    if (layout_.onset_free) line.onset_se_s = std::sqrt(std::max(0.0, covariance(next, next)));
+    line.breakaway_s = model.breakaway_time(a, d);
     if (line.stiffness_n_per_m < support_low_ || line.stiffness_n_per_m > support_high_) ++out.lines_outside_prior;
     out.lines.push_back(line);
+    k_values.push_back(a.stiffness_n_per_m);
   }
   for (std::size_t i = 0; i < out.lines.size(); ++i) {
     double nearest = INFINITY;
@@ -102,21 +187,26 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     if (i + 1 < out.lines.size()) nearest = std::min(nearest, out.lines[i + 1].frequency_hz - out.lines[i].frequency_hz);
     out.lines[i].nearest_separation_hz = std::isfinite(nearest) ? nearest : 0.0;
   }
+  (void)device;
 
   // The realised population.
-  out.median_stiffness_n_per_m = sample_median(best.stiffness_n_per_m);
-  out.sd_log_stiffness = sample_sd_log(best.stiffness_n_per_m);
+  out.median_stiffness_n_per_m = sample_median(k_values);
+  out.sd_log_stiffness = sample_sd_log(k_values);
 
-  // Checks for the verdict: is what is left white, and how strong was the record.
-  const std::vector<double> r = search.residual(best.stiffness_n_per_m);
-  out.in_band_power_ratio = noise_.band_power_ratio(r, band_low_hz_, band_high_hz_);
-  std::vector<double> model(samples);
-  model_.evaluate(best.stiffness_n_per_m, model);
-  double mean = 0.0, var = 0.0;
-  for (double v : model) mean += v / static_cast<double>(samples);
-  for (double v : model) var += (v - mean) * (v - mean) / static_cast<double>(samples);
-  const double noise_var = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v : out.residual_sigma_v * out.residual_sigma_v;
-  out.signal_to_noise_db = noise_var > 0.0 && var > 0.0 ? 10.0 * std::log10(var / noise_var) : 0.0;
+  // Checks for the verdict: what the residual says, and how strong the record was.
+  out.checks = residual_checks(fit, best.state);
+  {
+    FitState state = best.state;
+    const std::vector<double> r = fit.residual(state);
+    out.in_band_power_ratio = layout_.coloured_noise ? out.checks.line_band : noise_.band_power_ratio(r, band_low_hz_, band_high_hz_);
+  }
+  std::vector<double> model_v(samples);
+  model_.voltage(best.state, model_v);
+  double model_mean = 0.0, model_var = 0.0;
+  for (double v : model_v) model_mean += v / static_cast<double>(samples);
+  for (double v : model_v) model_var += (v - model_mean) * (v - model_mean) / static_cast<double>(samples);
+  const double noise_var = layout_.coloured_noise ? out.spectrum.variance(samples) : white2;
+  out.signal_to_noise_db = noise_var > 0.0 && model_var > 0.0 ? 10.0 * std::log10(model_var / noise_var) : 0.0;
   timespec cpu_end{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu_end);
   out.seconds = static_cast<double>(cpu_end.tv_sec - cpu_start.tv_sec) + 1e-9 * static_cast<double>(cpu_end.tv_nsec - cpu_start.tv_nsec);

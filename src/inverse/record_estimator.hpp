@@ -1,41 +1,63 @@
 #pragma once
-//! One record in, the raw estimate out: noise level, fits of every plausible count, the
-//! count's posterior, the identified lines with their uncertainty, the realised population's
-//! median and spread, and the checks the verdict speaks from (docs/inverse.md).
-//! Calibration (calibration_maps.hpp) turns the raw posterior and spreads into calibrated
-//! ones; this class knows nothing of banks.
+//! One record in, the raw estimate out: noise level and spectrum, fits of every plausible
+//! count, the count's posterior, the identified lines (stiffness, load, onset) with their
+//! uncertainty, the device's fitted parameters, the realised population's median and spread,
+//! and the checks the verdict speaks from (docs/inverse.md). Calibration
+//! (calibration_maps.hpp) turns the raw posterior and spreads into calibrated ones; this class
+//! knows nothing of banks.
 #include <span>
 #include <vector>
 
-#include "inverse/atom_table.hpp"
+#include "inverse/atom_library.hpp"
 #include "inverse/count_posterior.hpp"
+#include "inverse/fit_layout.hpp"
 #include "inverse/inverse_prior.hpp"
 #include "inverse/line_proposals.hpp"
 #include "inverse/line_search.hpp"
+#include "inverse/load_prior.hpp"
 #include "inverse/noise_level.hpp"
+#include "inverse/noise_whitening.hpp"
 #include "inverse/record_model.hpp"
 
 namespace stengmc {
 
 struct EstimatedLine {
   double stiffness_n_per_m = 0.0;
-  double log_stiffness_se = 0.0;        //!< standard error of ln k (Gauss–Newton) [-]
-  double frequency_hz = 0.0;            //!< damped natural frequency sqrt(k/m - d^2) / 2 pi [Hz]
-  double amplitude_v = 0.0;             //!< the line's amplitude at breakaway, R sigma w v_b [V]
+  double log_stiffness_se = 0.0;        //!< standard error of ln k (Laplace) [-]
+  double frequency_hz = 0.0;            //!< its tail's frequency [Hz]
+  double amplitude_v = 0.0;             //!< the line's amplitude at breakaway [V]
   double nearest_separation_hz = 0.0;   //!< to the nearest other identified line (0 alone) [Hz]
+  double load_n = 0.0;                  //!< its load (at the device's friction coefficients) [N]
+  double log_load_se = 0.0;             //!< standard error of ln N (0: not fitted) [-]
+  double onset_s = 0.0;                 //!< its contact onset [s]
+  double onset_se_s = 0.0;              //!< standard error of the onset (0: not fitted) [s]
+  double breakaway_s = 0.0;             //!< when it left the belt [s]
+};
+
+//! What the residual of the chosen fit says about the model's assumptions (the verdict's
+//! words): each a ratio that is ~1 when the model fits to the noise.
+struct ResidualChecks {
+  double misfit = 1.0;              //!< whitened RSS / (M sigma^2) [-]
+  double line_band = 1.0;           //!< residual power in the lines' band over its expectation [-]
+  double low_band = 1.0;            //!< residual power below the lines' band over its expectation [-]
+  double early = 1.0;               //!< residual power over the breakaways' span over its expectation [-]
+  double late = 1.0;                //!< residual power over the last third of the record over its expectation [-]
 };
 
 struct RecordEstimate {
-  NoiseLevel noise;                     //!< from the band above the prior's lines
-  double sigma_v = 0.0;                 //!< the noise level the evidence used [V]
-  double residual_sigma_v = 0.0;        //!< rms residual of the chosen fit, sqrt(RSS / (M - n)) [V]
-  std::vector<double> fit_residual_v2;  //!< RSS of the best fit with n atoms, index n [V^2]
+  NoiseLevel noise;                     //!< white level from the band above the prior's lines
+  NoiseSpectrum spectrum;               //!< the fitted noise spectrum (coloured prior only)
+  double sigma_v = 0.0;                 //!< the (whitened) noise level the evidence used [V]
+  double residual_sigma_v = 0.0;        //!< rms of the chosen fit's whitened residual [V]
+  std::vector<double> fit_residual_v2;  //!< whitened RSS of the best fit with n atoms, index n [V^2]
   CountPosterior posterior;             //!< raw (uncalibrated)
   std::size_t count = 0;                //!< the most probable count
   std::vector<EstimatedLine> lines;     //!< at that count, ascending in k
+  FitState state;                       //!< the chosen fit's parameters (device's shared ones included)
   double median_stiffness_n_per_m = 0.0;  //!< median of the identified k
   double sd_log_stiffness = 0.0;        //!< sample sd of ln k (n - 1 denominator; 0 below 2 lines)
   double in_band_power_ratio = 1.0;     //!< residual power in the lines' band over the noise band's (1: white)
+  ResidualChecks checks;                //!< the chosen fit's residual against the noise model
   std::size_t lines_outside_prior = 0;  //!< identified k beyond the prior's 1e-4 / 1 - 1e-4 quantiles
   bool more_than_prior_allows = false;  //!< one atom more than the prior's largest count still explains much
   double signal_to_noise_db = 0.0;      //!< 10 log10(var(model) / sigma^2) of the chosen fit [dB]
@@ -45,19 +67,25 @@ struct RecordEstimate {
 class RecordEstimator {
  public:
   //! Holds FFT plans: one estimator per thread.
-  RecordEstimator(const AtomTable& atoms, const InversePrior& prior, const LineSearchOptions& options = {});
+  RecordEstimator(const AtomLibrary& atoms, const InversePrior& prior, const LineSearchOptions& options = {});
 
   RecordEstimate estimate(std::span<const double> voltage);
 
-  [[nodiscard]] const AtomTable& atoms() const { return *atoms_; }
+  [[nodiscard]] const AtomLibrary& atoms() const { return *atoms_; }
   [[nodiscard]] const InversePrior& prior() const { return prior_; }
+  [[nodiscard]] const FitLayout& layout() const { return layout_; }
+  [[nodiscard]] const RecordModel& model() const { return model_; }
   //! The frequency band the prior's lines fall in [Hz].
   [[nodiscard]] double line_band_low_hz() const { return band_low_hz_; }
   [[nodiscard]] double line_band_high_hz() const { return band_high_hz_; }
 
  private:
-  const AtomTable* atoms_;
+  ResidualChecks residual_checks(const RecordFit& fit, FitState state) const;
+
+  const AtomLibrary* atoms_;
   InversePrior prior_;
+  LoadPrior loads_;
+  FitLayout layout_;
   LogStiffnessDensity density_;
   RecordModel model_;
   LineProposals proposals_;
@@ -67,9 +95,9 @@ class RecordEstimator {
   NoiseEstimator noise_;
 };
 
-//! The relative accuracy the record model is trusted to (atoms ~1e-4, the circuit coupling
-//! ~5e-4 at 16 asperities: README, "atoms"); added to the noise as a floor so a noise-free
-//! record does not get a zero-width answer from model error alone.
+//! The relative accuracy the record model is trusted to (atoms ~1e-3 at v_b = 1 m/s, 5e-4
+//! above; the circuit coupling ~5e-4 at 16 asperities: docs/inverse.md, "atoms"); added to the
+//! noise as a floor so a noise-free record does not get a zero-width answer from model error.
 inline constexpr double MODEL_RELATIVE_ACCURACY = 1e-3;
 
 //! The smallest noise level the evidence uses, relative to one atom's amplitude R sigma w v_b

@@ -9,6 +9,13 @@
 namespace stengmc {
 
 std::vector<double> simulate_record(const KnownDevice& device, std::span<const double> k, const RecordGrid& grid) {
+  std::vector<SimulatedAsperity> asperities;
+  for (double stiffness : k) asperities.push_back({stiffness, device.asperity.normal_load_n, 0.0});
+  return simulate_record(device, asperities, grid);
+}
+
+std::vector<double> simulate_record(const KnownDevice& device, std::span<const SimulatedAsperity> asperities,
+                                    const RecordGrid& grid) {
   if (grid.start_s != 0.0) throw Error("simulate_record: the grid must start at t = 0");
   Study study;
   study.file = "(simulated record)";
@@ -17,9 +24,11 @@ std::vector<double> simulate_record(const KnownDevice& device, std::span<const d
   study.circuit = device.circuit;
   study.sample_rate_hz = grid.sample_rate_hz();
   study.duration_s = grid.duration_s();
-  for (double stiffness : k) {
+  for (const SimulatedAsperity& s : asperities) {
     Asperity a = device.asperity;
-    a.stiffness_n_per_m = stiffness;
+    a.stiffness_n_per_m = s.stiffness_n_per_m;
+    a.normal_load_n = s.normal_load_n;
+    a.onset_s = s.onset_s;
     study.asperities.push_back(a);
   }
   study.surface = std::make_shared<const Surface>(Surface::fixed_list(study.asperities));

@@ -14,7 +14,7 @@ namespace stengmc {
 namespace {
 
 constexpr const char* FILE_TYPE = "stengmc-calibration-bank";
-constexpr std::int64_t FORMAT_VERSION = 1;
+constexpr std::int64_t FORMAT_VERSION = 2;  // 2: the atoms as a shape family (issue 23)
 
 std::string hex(std::uint64_t value) {
   char text[32];
@@ -22,18 +22,93 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
-//! A flat array of rows (row after row) as a 2-D dataset.
-std::vector<std::vector<double>> rows_of(const std::vector<double>& flat, std::size_t columns) {
-  std::vector<std::vector<double>> rows;
-  for (std::size_t i = 0; columns > 0 && i + columns <= flat.size(); i += columns)
-    rows.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(i), flat.begin() + static_cast<std::ptrdiff_t>(i + columns));
-  return rows;
+//! The atoms' shape family (atom_shapes.hpp): the nodes, each representation's rows for the
+//! nodes that have it, the tails' parameters, the range and settings as attributes.
+void write_atom_shapes(Hdf5Writer& f, const AtomShapeData& a) {
+  std::vector<std::int64_t> onset_nodes, breakaway_nodes;
+  std::vector<std::vector<double>> onset_values, onset_slopes, breakaway_values, breakaway_slopes;
+  for (std::size_t n = 0; n < a.onset_values.size(); ++n) {
+    if (!a.onset_values[n].empty()) {
+      onset_nodes.push_back(static_cast<std::int64_t>(n));
+      onset_values.push_back(a.onset_values[n]);
+      onset_slopes.push_back(a.onset_slopes[n]);
+    }
+    if (!a.breakaway_values[n].empty()) {
+      breakaway_nodes.push_back(static_cast<std::int64_t>(n));
+      breakaway_values.push_back(a.breakaway_values[n]);
+      breakaway_slopes.push_back(a.breakaway_slopes[n]);
+    }
+  }
+  f.write("/atoms/pi_nodes", a.pi_nodes);
+  f.write("/atoms/zeta_nodes", a.zeta_nodes);
+  f.write("/atoms/onset_nodes", onset_nodes);
+  f.write("/atoms/onset_values", onset_values);
+  f.write("/atoms/onset_slopes", onset_slopes);
+  f.write("/atoms/breakaway_nodes", breakaway_nodes);
+  f.write("/atoms/breakaway_values", breakaway_values);
+  f.write("/atoms/breakaway_slopes", breakaway_slopes);
+  f.write("/atoms/breakaway_share", a.breakaway_share);
+  f.write("/atoms/tail_log_amplitude", a.tail_log_amplitude);
+  f.write("/atoms/tail_phase", a.tail_phase);
+  f.attribute("/atoms", "min_pi", a.range.min_pi);
+  f.attribute("/atoms", "max_pi", a.range.max_pi);
+  f.attribute("/atoms", "min_zeta", a.range.min_zeta);
+  f.attribute("/atoms", "max_zeta", a.range.max_zeta);
+  f.attribute("/atoms", "onset_samples", static_cast<std::int64_t>(a.onset_samples));
+  f.attribute("/atoms", "breakaway_samples", static_cast<std::int64_t>(a.breakaway_samples));
+  f.attribute("/atoms", "check_error", a.check_error);
+  f.attribute("/atoms", "log_pi_step", a.settings.log_pi_step);
+  f.attribute("/atoms", "zeta_node_count", static_cast<std::int64_t>(a.settings.zeta_nodes));
+  f.attribute("/atoms", "theta_step", a.settings.theta_step);
+  f.attribute("/atoms", "after_breakaway", a.settings.after_breakaway);
+  f.attribute("/atoms", "before_breakaway", a.settings.before_breakaway);
+  f.attribute("/atoms", "split_pi", a.settings.split_pi);
+  f.attribute("/atoms", "blend", a.settings.blend);
+  f.attribute("/atoms", "tail_fit_span", a.settings.tail_fit_span);
 }
 
-std::vector<double> flat_of(const std::vector<std::vector<double>>& rows) {
-  std::vector<double> flat;
-  for (const auto& r : rows) flat.insert(flat.end(), r.begin(), r.end());
-  return flat;
+AtomShapeData read_atom_shapes(const std::string& path, const Hdf5Reader& f) {
+  auto number = [&](const std::string& name) {
+    const auto v = f.number_attribute("/atoms", name);
+    if (!v) throw InputError(path + ": attribute /atoms@" + name + " is missing (a damaged bank?)");
+    return *v;
+  };
+  AtomShapeData a;
+  a.pi_nodes = f.vector("/atoms/pi_nodes");
+  a.zeta_nodes = f.vector("/atoms/zeta_nodes");
+  const std::size_t nodes = a.pi_nodes.size() * a.zeta_nodes.size();
+  for (auto* v : {&a.onset_values, &a.onset_slopes, &a.breakaway_values, &a.breakaway_slopes}) v->assign(nodes, {});
+  auto rows = [&](const char* index, const char* values, const char* slopes, std::vector<std::vector<double>>& v,
+                  std::vector<std::vector<double>>& g) {
+    const std::vector<double> which = f.vector(index);
+    const auto vals = f.matrix(values), slps = f.matrix(slopes);
+    if (vals.size() != which.size() || slps.size() != which.size())
+      throw InputError(path + ": " + values + " does not match " + index + " (a damaged bank?)");
+    for (std::size_t r = 0; r < which.size(); ++r) {
+      const auto n = static_cast<std::size_t>(which[r]);
+      if (n >= nodes) throw InputError(path + ": " + index + " names node " + std::to_string(n) + " of " + std::to_string(nodes));
+      v[n] = vals[r];
+      g[n] = slps[r];
+    }
+  };
+  rows("/atoms/onset_nodes", "/atoms/onset_values", "/atoms/onset_slopes", a.onset_values, a.onset_slopes);
+  rows("/atoms/breakaway_nodes", "/atoms/breakaway_values", "/atoms/breakaway_slopes", a.breakaway_values, a.breakaway_slopes);
+  a.breakaway_share = f.vector("/atoms/breakaway_share");
+  a.tail_log_amplitude = f.vector("/atoms/tail_log_amplitude");
+  a.tail_phase = f.vector("/atoms/tail_phase");
+  a.range = {number("min_pi"), number("max_pi"), number("min_zeta"), number("max_zeta")};
+  a.onset_samples = static_cast<std::size_t>(number("onset_samples"));
+  a.breakaway_samples = static_cast<std::size_t>(number("breakaway_samples"));
+  a.check_error = number("check_error");
+  a.settings.log_pi_step = number("log_pi_step");
+  a.settings.zeta_nodes = static_cast<std::size_t>(number("zeta_node_count"));
+  a.settings.theta_step = number("theta_step");
+  a.settings.after_breakaway = number("after_breakaway");
+  a.settings.before_breakaway = number("before_breakaway");
+  a.settings.split_pi = number("split_pi");
+  a.settings.blend = number("blend");
+  a.settings.tail_fit_span = number("tail_fit_span");
+  return a;
 }
 
 void write_records(Hdf5Writer& f, const std::vector<CalibrationSample>& samples, std::size_t naive_index) {
@@ -124,21 +199,7 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
   f.attribute("/", "atom_seconds", bank.atom_seconds);
   f.attribute("/", "threads", static_cast<std::int64_t>(bank.threads));
 
-  const AtomTableData& a = bank.atoms;
-  f.write("/atoms/heads", rows_of(a.heads, a.head_samples));
-  f.write("/atoms/head_slopes", rows_of(a.head_slopes, a.head_samples));
-  f.write("/atoms/tail_shift_s", a.tail_shift_s);
-  f.write("/atoms/tail_phase_rad", a.tail_phase_rad);
-  f.write("/atoms/tail_fit_error", a.tail_fit_error);
-  f.attribute("/atoms", "min_stiffness_n_per_m", a.min_stiffness_n_per_m);
-  f.attribute("/atoms", "max_stiffness_n_per_m", a.max_stiffness_n_per_m);
-  f.attribute("/atoms", "head_samples", static_cast<std::int64_t>(a.head_samples));
-  f.attribute("/atoms", "check_error", a.check_error);
-  f.attribute("/atoms", "head_log_step", a.settings.head_log_step);
-  f.attribute("/atoms", "tail_log_step", a.settings.tail_log_step);
-  f.attribute("/atoms", "head_after_breakaway_s", a.settings.head_after_breakaway_s);
-  f.attribute("/atoms", "blend_s", a.settings.blend_s);
-  f.attribute("/atoms", "checks", static_cast<std::int64_t>(a.settings.checks));
+  write_atom_shapes(f, bank.atoms);
 
   const CalibrationMaps& m = bank.maps;
   f.write("/maps/confusion", m.confusion);
@@ -183,26 +244,7 @@ StoredBank read_identity_and_atoms(const std::string& path, const Hdf5Reader& f)
   bank.git_revision = f.string_attribute("/", "git_revision");
   bank.created_utc = f.string_attribute("/", "created_utc");
 
-  AtomTableData& a = bank.atoms;
-  a.heads = flat_of(f.matrix("/atoms/heads"));
-  a.head_slopes = flat_of(f.matrix("/atoms/head_slopes"));
-  a.tail_shift_s = f.vector("/atoms/tail_shift_s");
-  a.tail_phase_rad = f.vector("/atoms/tail_phase_rad");
-  a.tail_fit_error = f.vector("/atoms/tail_fit_error");
-  auto number = [&](const std::string& object, const std::string& name) {
-    const auto v = f.number_attribute(object, name);
-    if (!v) throw InputError(path + ": attribute " + object + "@" + name + " is missing (a damaged bank?)");
-    return *v;
-  };
-  a.min_stiffness_n_per_m = number("/atoms", "min_stiffness_n_per_m");
-  a.max_stiffness_n_per_m = number("/atoms", "max_stiffness_n_per_m");
-  a.head_samples = static_cast<std::size_t>(number("/atoms", "head_samples"));
-  a.check_error = number("/atoms", "check_error");
-  a.settings.head_log_step = number("/atoms", "head_log_step");
-  a.settings.tail_log_step = number("/atoms", "tail_log_step");
-  a.settings.head_after_breakaway_s = number("/atoms", "head_after_breakaway_s");
-  a.settings.blend_s = number("/atoms", "blend_s");
-  a.settings.checks = static_cast<std::size_t>(number("/atoms", "checks"));
+  bank.atoms = read_atom_shapes(path, f);
   return bank;
 }
 

@@ -6,9 +6,11 @@
 //!                    identity_device, identity_prior, identity_grid, identity_estimator;
 //!                    prior_study_text (the ensemble study the records came from);
 //!                    records_requested, records_valid, seconds, atom_seconds, threads
-//!   /atoms/          the atom table (AtomTableData): heads, head_slopes (head points x
-//!                    samples), tail_shift_s, tail_phase_rad, tail_fit_error; attributes
-//!                    min/max_stiffness_n_per_m, head_samples, check_error and its settings
+//!   /atoms/          the atoms' shape family (AtomShapeData): pi_nodes, zeta_nodes; the
+//!                    onset-aligned rows (onset_nodes: which nodes; onset_values, onset_slopes)
+//!                    and the breakaway-aligned ones (breakaway_nodes, _values, _slopes,
+//!                    breakaway_share); tail_log_amplitude, tail_phase per node; attributes the
+//!                    range (min/max_pi, min/max_zeta), sample counts, check_error and settings
 //!   /maps/           confusion (counts x counts, row n-hat, column true n), median_score_quantile,
 //!                    sd_score_quantile (per bin of 4 counts of n-hat), naive_thresholds; attributes count_min,
 //!                    count_max, line_error_scale, naive_threshold, records and the bank's own figures
@@ -29,7 +31,7 @@ struct StoredBank {
   BankIdentity identity;
   std::string git_revision;
   std::string created_utc;
-  AtomTableData atoms;
+  AtomShapeData atoms;
   CalibrationMaps maps;
 };
 

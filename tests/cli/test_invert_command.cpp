@@ -171,9 +171,11 @@ TEST_F(InvertCommand, CalibrationIsTheSameOnOneAndTwoThreads) {
   for (const char* name : {"/records/count", "/records/true_count", "/records/stiffness", "/records/log_stiffness_se",
                            "/records/log_evidence", "/records/median", "/records/sd_log", "/records/naive_counts",
                            "/records/noise_sigma", "/maps/confusion", "/maps/median_score_quantile",
-                           "/maps/sd_score_quantile", "/atoms/heads", "/atoms/tail_phase_rad"}) {
+                           "/maps/sd_score_quantile", "/atoms/onset_values", "/atoms/breakaway_values", "/atoms/tail_phase",
+                           "/atoms/tail_log_amplitude"}) {
     const std::string path = name;
-    if (path == "/records/naive_counts" || path == "/maps/confusion" || path == "/atoms/heads")
+    if (path == "/records/naive_counts" || path == "/maps/confusion" || path == "/atoms/onset_values" ||
+        path == "/atoms/breakaway_values")
       EXPECT_EQ(one.matrix(path), two.matrix(path)) << path;
     else
       EXPECT_EQ(one.vector(path), two.vector(path)) << path;

@@ -1,19 +1,14 @@
-// Development harness for the inverse estimator (issue 11, milestone 1): simulates records
-// in the issue's regime with the forward model (n asperities of the known device with
-// stiffnesses drawn from a lognormal law, Model 2, the circuit, white noise at a drawn SNR),
-// inverts each with RecordEstimator (raw, uncalibrated), and prints n RMSE, the exact rate,
-// the median-k error and the sd(ln k) RMSE, by n bin and SNR bin. Not a test: a measuring
-// tool whose figures go in the commit messages and the README's development notes.
+// Development harness for the inverse estimator: simulates records of a known device's
+// [inverse] prior exactly as a calibration does (its prior study, realisation by realisation,
+// every departure the prior draws), inverts each with RecordEstimator (raw, uncalibrated), and
+// prints the count's exact rate and RMSE, the median-k error and the sd(ln k) RMSE, by n bin,
+// with the CPU time per record. Not a test: a measuring tool whose figures go in the commit
+// messages and docs/inverse.md's development notes.
 //
-//   inverse_harness [records] [seed] [belt_velocity_m_per_s]
+//   inverse_harness DEVICE.toml [records] [seed] [verbose]
 #include <omp.h>
 
 #include <algorithm>
-#include <boost/random/lognormal_distribution.hpp>
-#include <boost/random/normal_distribution.hpp>
-#include <boost/random/uniform_int_distribution.hpp>
-#include <boost/random/uniform_real_distribution.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,124 +16,142 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/random_stream.hpp"
-#include "inverse/atom_table.hpp"
-#include "inverse/forward_atom.hpp"
+#include "ensemble/run_realisation.hpp"
+#include "ensemble/study_file.hpp"
+#include "inverse/calibration_run.hpp"
+#include "inverse/prior_study.hpp"
 #include "inverse/record_estimator.hpp"
 #include "inverse/sample_statistics.hpp"
-#include "inverse/simulated_record.hpp"
+#include "pipeline/study.hpp"
+#include "pipeline/study_realisation.hpp"
 
 using namespace stengmc;
 
 namespace {
 
 struct Outcome {
-  int n = 0;
-  double snr_db = 0.0;
-  std::size_t n_hat = 0;
-  double median_true = 0.0, median_hat = 0.0;
-  double sd_true = 0.0, sd_hat = 0.0;
-  double seconds = 0.0;
-  double simulate_seconds = 0.0;
   bool valid = false;
+  std::size_t n = 0, n_hat = 0;
+  double median_true = 0, median_hat = 0, sd_true = 0, sd_hat = 0, seconds = 0, simulate_seconds = 0, top_probability = 0;
+  double k_error = 0;  // largest |ln k_hat / k| over lines, when counted exactly
 };
 
-void report(const char* label, const std::vector<Outcome>& all, bool (*keep)(const Outcome&)) {
-  double se = 0.0, sd_se = 0.0;
+void report(const char* label, const std::vector<Outcome>& all, std::size_t lo, std::size_t hi) {
+  double se = 0, sd_se = 0, seconds = 0;
   int exact = 0, count = 0, sd_count = 0;
   std::vector<double> median_errors;
   for (const Outcome& o : all) {
-    if (!o.valid || !keep(o)) continue;
+    if (!o.valid || o.n < lo || o.n > hi) continue;
     ++count;
-    const double e = static_cast<double>(o.n_hat) - o.n;
-    se += e * e;
-    exact += e == 0.0;
-    median_errors.push_back(std::abs(o.median_hat / o.median_true - 1.0));
-    if (o.n >= 2 && o.n_hat >= 2) {
-      sd_se += (o.sd_hat - o.sd_true) * (o.sd_hat - o.sd_true);
-      ++sd_count;
-    }
+    const double e = static_cast<double>(o.n_hat) - static_cast<double>(o.n);
+    se += e * e, exact += e == 0.0, seconds += o.seconds;
+    if (o.n > 0 && o.n_hat > 0) median_errors.push_back(std::abs(o.median_hat / o.median_true - 1.0));
+    if (o.n >= 2 && o.n_hat >= 2) sd_se += (o.sd_hat - o.sd_true) * (o.sd_hat - o.sd_true), ++sd_count;
   }
   if (count == 0) return;
-  std::printf("%-12s %5d  n RMSE %6.3f  exact %5.1f %%  median-k |rel err| median %.4f  sd(ln k) RMSE %.4f\n", label, count,
-              std::sqrt(se / count), 100.0 * exact / count, sample_median(median_errors),
-              sd_count ? std::sqrt(sd_se / sd_count) : 0.0);
+  std::printf("%-10s %4d  n RMSE %6.3f  exact %5.1f %%  median-k |rel err| median %.2e  sd(ln k) RMSE %.4f  %5.0f ms\n", label,
+              count, std::sqrt(se / count), 100.0 * exact / count, median_errors.empty() ? 0.0 : sample_median(median_errors),
+              sd_count ? std::sqrt(sd_se / sd_count) : 0.0, 1e3 * seconds / count);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int records = argc > 1 ? std::atoi(argv[1]) : 200;
-  const std::uint64_t seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
-  KnownDevice device;
-  device.model.belt_velocity_m_per_s = argc > 3 ? std::atof(argv[3]) : 10.0;
-  device.asperity.element.length_m = 50e-6;  // the issue's regime; everything else Table 1-2
-  const RecordGrid grid{0.0, 1e-8, 10001};
-  InversePrior prior;  // n 1..16, lognormal median U(40, 120), sigma_log U(0.2, 0.6), SNR U(20, 40)
-  const auto [k_low, k_high] = prior.support();
-  const auto t0 = std::chrono::steady_clock::now();
-  const double k_valid = smallest_valid_stiffness(device, grid.duration_s(), grid.step_s, k_low / 1.25, k_high * 1.25);
-  const AtomTable atoms(device, grid, std::max(k_low / 1.25, k_valid), k_high * 1.25);
-  std::printf("atom table [%.3g, %.3g] N/m built in %.2f s, check error %.3g\n", atoms.min_stiffness(), atoms.max_stiffness(),
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), atoms.data().check_error);
-
-  std::vector<Outcome> outcomes(static_cast<std::size_t>(records));
-  const auto start = std::chrono::steady_clock::now();
-#pragma omp parallel
-  {
-    RecordEstimator estimator(atoms, prior);
-#pragma omp for schedule(dynamic, 1)
-    for (int r = 0; r < records; ++r) {
-      // Every draw of record r from its own stream: the outcome does not depend on threads.
-      RandomEngine engine = random_stream(seed, static_cast<std::uint64_t>(r), StreamKind::noise);
-      Outcome& o = outcomes[static_cast<std::size_t>(r)];
-      o.n = boost::random::uniform_int_distribution<int>(static_cast<int>(prior.count_min), static_cast<int>(prior.count_max))(engine);
-      const double median_k = boost::random::uniform_real_distribution<double>(prior.first[0], prior.first[1])(engine);
-      const double sigma_log = boost::random::uniform_real_distribution<double>(prior.second[0], prior.second[1])(engine);
-      o.snr_db = boost::random::uniform_real_distribution<double>(prior.snr_db[0], prior.snr_db[1])(engine);
-      boost::random::lognormal_distribution<double> law(std::log(median_k), sigma_log);
-      std::vector<double> k(static_cast<std::size_t>(o.n));
-      for (double& x : k) x = law(engine);
-      std::vector<double> v;
-      const auto s0 = std::chrono::steady_clock::now();
-      try {
-        v = simulate_record(device, k, grid);
-      } catch (const ModelError&) {
-        continue;  // an asperity reached l: the forward model's invalid realisation
-      }
-      o.simulate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
-      double mean = 0.0, var = 0.0;
-      for (double x : v) mean += x / static_cast<double>(v.size());
-      for (double x : v) var += (x - mean) * (x - mean) / static_cast<double>(v.size());
-      boost::random::normal_distribution<double> noise(0.0, std::sqrt(var / std::pow(10.0, o.snr_db / 10.0)));
-      for (double& x : v) x += noise(engine);
-      const RecordEstimate e = estimator.estimate(v);
-      o.n_hat = e.count;
-      o.median_true = sample_median(k);
-      o.median_hat = e.median_stiffness_n_per_m > 0 ? e.median_stiffness_n_per_m : 1.0;
-      o.sd_true = sample_sd_log(k);
-      o.sd_hat = e.sd_log_stiffness;
-      o.seconds = e.seconds;
-      o.valid = true;
-      if (static_cast<double>(o.n_hat) != o.n)
-#pragma omp critical
-        std::printf("record %d: n %d -> %zu (SNR %.1f dB, median %.1f, sigma_log %.2f)\n", r, o.n, o.n_hat, o.snr_db, median_k, sigma_log);
-    }
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: inverse_harness DEVICE.toml [records] [seed] [verbose]\n");
+    return 2;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  double estimate_s = 0.0, simulate_s = 0.0;
-  int valid = 0;
-  for (const Outcome& o : outcomes)
-    if (o.valid) estimate_s += o.seconds, simulate_s += o.simulate_seconds, ++valid;
-  std::printf("%d records (%d valid), v_b = %g m/s, seed %llu: wall %.1f s; per record: simulation %.0f ms, estimation %.0f ms\n",
-              records, valid, device.model.belt_velocity_m_per_s, static_cast<unsigned long long>(seed), wall,
-              1e3 * simulate_s / valid, 1e3 * estimate_s / valid);
-  report("all", outcomes, [](const Outcome&) { return true; });
-  report("n 1-4", outcomes, [](const Outcome& o) { return o.n <= 4; });
-  report("n 5-8", outcomes, [](const Outcome& o) { return o.n >= 5 && o.n <= 8; });
-  report("n 9-12", outcomes, [](const Outcome& o) { return o.n >= 9 && o.n <= 12; });
-  report("n 13-16", outcomes, [](const Outcome& o) { return o.n >= 13; });
-  report("SNR 20-30", outcomes, [](const Outcome& o) { return o.snr_db < 30.0; });
-  report("SNR 30-40", outcomes, [](const Outcome& o) { return o.snr_db >= 30.0; });
+  try {
+    const Study device_study = read_study(argv[1], std::nullopt);
+    const std::size_t records = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 100;
+    const std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
+    const int verbose = argc > 4 ? std::atoi(argv[4]) : 0;
+    const InverseSetup setup = inverse_setup(device_study);
+    const double t0 = omp_get_wtime();
+    const std::unique_ptr<AtomLibrary> atoms = build_atom_library(setup);
+    std::printf("atoms built in %.1f s (%zu shapes, check %.2g)\n", omp_get_wtime() - t0,
+                atoms->shapes().data().pi_nodes.size() * atoms->shapes().data().zeta_nodes.size(), atoms->check_error());
+    const auto [s_low, s_high] = setup.prior.support();
+    const std::string text = prior_study_text(setup.device, setup.prior, records, seed, 1e5, 1e7, one_asperity_rms_v(*atoms, setup.prior));
+    const StudyFile prior = parse_study_file(text, "harness prior", std::nullopt);
+    (void)s_low, (void)s_high;
+    std::vector<Outcome> outcomes(records);
+    const double start = omp_get_wtime();
+#pragma omp parallel
+    {
+      RecordEstimator estimator(*atoms, setup.prior);
+#pragma omp for schedule(dynamic, 1)
+      for (std::size_t r = 0; r < records; ++r) {
+        const double s0 = omp_get_wtime();
+        const RealisationRecord record = run_realisation(prior, r, true);
+        Outcome& o = outcomes[r];
+        o.simulate_seconds = omp_get_wtime() - s0;
+        if (!record.valid) continue;
+        const std::vector<double>& k = record.asperities[static_cast<std::size_t>(AsperityColumn::stiffness_n_per_m)];
+        try {
+          const RecordEstimate e = estimator.estimate(record.measured_voltage_v);
+          o.valid = true;
+          o.n = k.size();
+          o.n_hat = e.count;
+          o.median_true = sample_median(k);
+          o.median_hat = e.median_stiffness_n_per_m;
+          o.sd_true = sample_sd_log(k);
+          o.sd_hat = e.sd_log_stiffness;
+          o.seconds = e.seconds;
+          for (std::size_t j = 0; j < e.posterior.counts.size(); ++j)
+            if (e.posterior.counts[j] == e.count) o.top_probability = e.posterior.probability[j];
+          if (o.n == o.n_hat) {
+            std::vector<double> truth = k;
+            std::sort(truth.begin(), truth.end());
+            for (std::size_t i = 0; i < truth.size(); ++i) o.k_error = std::max(o.k_error, std::abs(std::log(e.lines[i].stiffness_n_per_m / truth[i])));
+          }
+          if (verbose || o.n != o.n_hat) {
+            // The truth's loads and onsets: the realisation's population drawn again.
+            std::vector<ParameterOverride> overrides;
+            for (const RecordExtra& x : record.extras)
+              if (x.name.rfind("draw:", 0) == 0) overrides.push_back({x.name.substr(5), x.values.front()});
+            const Study drawn = study_for_realisation(parse_study(text, "harness prior", std::nullopt, overrides), r);
+            std::vector<Asperity> truth = drawn.asperities;
+            std::sort(truth.begin(), truth.end(), [](const Asperity& a, const Asperity& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
+#pragma omp critical
+            {
+              std::printf("record %zu: n %zu -> %zu (P %.3f, %.0f ms; misfit %.2f, line band %.2f, low %.2f, early %.2f, late %.2f)\n", r,
+                          o.n, o.n_hat, o.top_probability, 1e3 * e.seconds, e.checks.misfit, e.checks.line_band,
+                          e.checks.low_band, e.checks.early, e.checks.late);
+              if (verbose > 1 || o.n != o.n_hat) {
+                for (const Asperity& a : truth)
+                  std::printf("   true k %8.3f N %.3e on %6.3f us\n", a.stiffness_n_per_m, a.normal_load_n, 1e6 * a.onset_s);
+                for (const EstimatedLine& l : e.lines)
+                  std::printf("   est  k %8.3f N %.3e on %6.3f us (se ln k %.1e)\n", l.stiffness_n_per_m, l.load_n, 1e6 * l.onset_s,
+                              l.log_stiffness_se);
+              }
+            }
+          }
+        } catch (const Error& e) {
+#pragma omp critical
+          std::printf("record %zu: %s\n", r, e.what());
+        }
+      }
+    }
+    double simulate = 0;
+    int valid = 0;
+    for (const Outcome& o : outcomes)
+      if (o.valid) simulate += o.simulate_seconds, ++valid;
+    std::printf("%zu records (%d valid), seed %llu: wall %.1f s; simulation %.0f ms per record\n", records, valid,
+                static_cast<unsigned long long>(seed), omp_get_wtime() - start, valid ? 1e3 * simulate / valid : 0.0);
+    report("all", outcomes, 0, 1000);
+    report("n 0", outcomes, 0, 0);
+    report("n 1-4", outcomes, 1, 4);
+    report("n 5-8", outcomes, 5, 8);
+    report("n 9-12", outcomes, 9, 12);
+    report("n 13-16", outcomes, 13, 16);
+    std::vector<double> k_errors;
+    for (const Outcome& o : outcomes)
+      if (o.valid && o.n == o.n_hat && o.n > 0) k_errors.push_back(o.k_error);
+    if (!k_errors.empty()) std::printf("worst line |ln k error| in exact records: median %.2e\n", sample_median(k_errors));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
   return 0;
 }

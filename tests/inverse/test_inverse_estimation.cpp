@@ -11,7 +11,6 @@
 
 #include "core/error.hpp"
 #include "core/random_stream.hpp"
-#include "inverse/atom_table.hpp"
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/record_input.hpp"
@@ -32,8 +31,8 @@ TEST(InverseEstimation, NoiseFreeRecordOfFourSeparatedLines) {
   // four lines 0.87, 1.23, 1.67, 2.25 MHz apart by ~25 line widths.
   const Study study = parse_study(known_device_study("100e-6", ""), "four_lines.toml", std::nullopt);
   const InverseSetup setup = inverse_setup(study);
-  const auto [low, high] = atom_range(setup);
-  const AtomTable atoms(setup.device, setup.grid, low, high);
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  const AtomLibrary& atoms = *library;
   const std::vector<double> k = {30.0, 60.0, 110.0, 200.0};
   const std::vector<double> record = simulate_record(setup.device, k, setup.grid);
   Inverter inverter(setup, atoms, nullptr);
@@ -52,8 +51,8 @@ TEST(InverseEstimation, RecordOutsideThePriorIsWarnedAbout) {
   const Study study = parse_study(known_device_study("30e-6", "median_n_per_m = [60, 80]\nsigma_log = [0.1, 0.15]\ncount = [1, 6]\n"),
                                   "narrow.toml", std::nullopt);
   const InverseSetup setup = inverse_setup(study);
-  const auto [low, high] = atom_range(setup);
-  const AtomTable atoms(setup.device, setup.grid, low, high);
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  const AtomLibrary& atoms = *library;
   std::vector<double> record = simulate_record(setup.device, std::vector<double>{70.0, 170.0}, setup.grid);
   RandomEngine engine = random_stream(1, 0, StreamKind::noise);
   boost::random::normal_distribution<double> noise(0.0, 1e-4);

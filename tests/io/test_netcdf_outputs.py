@@ -285,8 +285,8 @@ def main():
         b = out("bank.h5")
         expect_coordinate(b, "/records", "realisation", "/records/realisation")
         expect_dims(b, "/records", "naive_counts", ("realisation", "threshold"))
-        expect_dims(b, "/atoms", "heads", ("head", "head_sample"))
-        expect_dims(b, "/atoms", "tail_shift_s", ("tail",))
+        expect_dims(b, "/atoms", "onset_values", ("onset_node", "theta_sample"))
+        expect_dims(b, "/atoms", "tail_phase", ("node",))
         expect_dims(b, "/maps", "confusion", ("estimated_count", "count"))
 
         i = out("inverse.h5")
