@@ -123,6 +123,43 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     for (std::size_t n = 0; n < first && n < fits.size(); ++n) fits[n].residual_v2 = fit.whitened_rss(fits[n].state);
     search.refit(fits, first);
   }
+  // Every order the posterior weighs needs its Laplace determinant: without it an order's
+  // evidence keeps its parameters' prior densities (an onset's, per second, is ~1e5 for a
+  // range of 10 us) with nothing to balance them, and the greedy path's orders, fitted without
+  // one, won on pure noise. J^T J at the greedy fit (no further iterations) is enough: those
+  // orders are not the best, so only the size of their Occam factor matters.
+  for (std::size_t n = std::max<std::size_t>(1, prior_.count_min); n < fits.size() && n <= prior_.count_max; ++n) {
+    const std::size_t parameters = n * layout_.per_atom() + layout_.shared();
+    if (fits[n].normal_matrix.rows() != static_cast<Eigen::Index>(parameters))
+      fits[n] = fit.refine(fits[n].state, {}, true, true, 0);
+  }
+  // Backward elimination: the greedy path can leave an atom of the right k with the wrong load
+  // or onset (a local minimum no local fit leaves) and then add weak atoms that patch its
+  // misfit, each of which the evidence rewards. With the others in place the patch's atoms are
+  // the weakest: from the best order down, its weakest atom is removed and the rest refitted
+  // in full from there; that fit replaces the order below when it fits better, and the descent
+  // goes on from it, until one does not. On a record whose count is right, one refit that
+  // changes nothing.
+  {
+    const double sigma2 = sigma * sigma;
+    const std::vector<double> zeros(samples, 0.0);
+    for (std::size_t n = count_posterior(fits, sigma, prior_, density_, layout_, loads_).best; n > 0 && n - 1 >= prior_.count_min;
+         --n) {
+      const FitState& state = fits[n].state;
+      std::size_t weakest = 0;
+      double weakest_energy = INFINITY;
+      for (std::size_t i = 0; i < state.atoms.size(); ++i) {
+        const double energy = proposals_.score(state.atoms[i], zeros, state.amplitude, state.damping_rate_per_s).energy_v2;
+        if (energy < weakest_energy) weakest_energy = energy, weakest = i;
+      }
+      FitState start = state;
+      start.atoms.erase(start.atoms.begin() + static_cast<std::ptrdiff_t>(weakest));
+      OrderFit pruned = fit.refine(start, {}, true, true, options_.max_iterations);
+      const OrderFit& below = fits[n - 1];
+      if (!(pruned.residual_v2 / sigma2 + pruned.penalty < below.residual_v2 / sigma2 + below.penalty)) break;
+      fits[n - 1] = std::move(pruned);
+    }
+  }
   for (const OrderFit& f : fits) out.fit_residual_v2.push_back(f.residual_v2);
   out.sigma_v = sigma;
   out.posterior = count_posterior(fits, sigma, prior_, density_, layout_, loads_);

@@ -1,0 +1,135 @@
+// The inverse estimation under a broadened prior (issue 23: per-asperity loads and contact
+// onsets, a device known within a tolerance, coloured noise and an offset, counts from 0),
+// on records simulated by the forward model end to end (tribology of every asperity, the
+// shared circuit): what the estimator never saw but the truth it is compared with.
+#include <gtest/gtest.h>
+
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/random_stream.hpp"
+#include "inverse/calibration_run.hpp"
+#include "inverse/inversion.hpp"
+#include "inverse/simulated_record.hpp"
+#include "pipeline/study.hpp"
+#include "support/cli_runner.hpp"
+#include "support/inverse_device.hpp"
+
+namespace stengmc {
+namespace {
+
+using testing::known_device_study;
+using testing::ScratchDir;
+
+//! `record` with white Gaussian noise of `sigma_v` added from stream `seed` [V].
+void add_white_noise(std::vector<double>& record, double sigma_v, std::uint64_t seed) {
+  RandomEngine engine = random_stream(seed, 0, StreamKind::noise);
+  boost::random::normal_distribution<double> noise(0.0, sigma_v);
+  for (double& v : record) v += noise(engine);
+}
+
+double rms(const std::vector<double>& v) {
+  double mean = 0.0, s = 0.0;
+  for (double x : v) mean += x / static_cast<double>(v.size());
+  for (double x : v) s += (x - mean) * (x - mean) / static_cast<double>(v.size());
+  return std::sqrt(s);
+}
+
+TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
+  // The issue's must-show record: 100 us at 100 MHz, a prior of loads spread by a CV of
+  // 0.2-0.6 and onsets within 20 us; four asperities whose loads lie 0.6-1.5 x the device's
+  // and whose onsets are 0-12.5 us, their lines 0.87-2.25 MHz apart by ~25 line widths.
+  const Study study = parse_study(known_device_study("100e-6", "count = [0, 8]\nload_cv = [0.2, 0.6]\nonset_s = [0, 20e-6]\n"),
+                                  "unequal.toml", std::nullopt);
+  const InverseSetup setup = inverse_setup(study);
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  const double n0 = setup.device.asperity.normal_load_n;
+  const std::vector<SimulatedAsperity> truth = {
+      {30.0, 0.6 * n0, 3.1e-6}, {60.0, 1.5 * n0, 0.0}, {110.0, 0.8 * n0, 12.5e-6}, {200.0, 1.2 * n0, 7.3e-6}};
+  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
+  // 40 dB: the prior's highest SNR.
+  add_white_noise(record, 1e-2 * rms(record), 3);
+  Inverter inverter(setup, *library, nullptr);
+  const Inversion result = inverter.invert("unequal loads and onsets", record);
+  EXPECT_EQ(result.raw.count, 4u);
+  ASSERT_EQ(result.raw.lines.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+}
+
+TEST(InverseBroadened, PureNoiseHasNoSlidingAsperity) {
+  // Noise alone, white and with the broadened prior's coloured noise and offset in mind: no
+  // atom explains it better than the noise does, so n = 0. The noise is that of a record at
+  // 30 dB with one asperity (the record's scale is the device's).
+  for (const char* extra : {"", "noise = \"coloured\"\noffset = true\nparameter_tolerance = 0.05\n"}) {
+    SCOPED_TRACE(extra);
+    const Study study = parse_study(
+        known_device_study("30e-6", std::string("count = [0, 6]\nload_cv = [0.2, 0.6]\nonset_s = [0, 5e-6]\n") + extra),
+        "noise.toml", std::nullopt);
+    const InverseSetup setup = inverse_setup(study);
+    const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+    const std::vector<double> one = simulate_record(setup.device, std::vector<double>{75.0}, setup.grid);
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+      std::vector<double> record(setup.grid.samples, 0.0);
+      add_white_noise(record, 0.0316 * rms(one), seed);
+      Inverter inverter(setup, *library, nullptr);
+      EXPECT_EQ(inverter.invert("noise", record).raw.count, 0u) << "seed " << seed;
+    }
+  }
+}
+
+TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
+  // A small calibration of the broadened prior (200 records, seed 21) and 200 held-out
+  // records of the same prior with another seed (22): the held-out records' 90 % intervals,
+  // calibrated by the first bank's maps, must cover their truths in 0.83-0.97 of the records
+  // (one sd of a true 0.90 over 200 records is 0.021). Cheap records (30 us, 0-5
+  // asperities) keep it to a few minutes on two cores.
+  const std::string inverse =
+      "count = [0, 5]\nmedian_n_per_m = [50, 100]\nsigma_log = [0.2, 0.5]\nload_cv = [0.2, 0.6]\nonset_s = [0, 5e-6]\n"
+      "parameter_tolerance = 0.05\nnoise = \"coloured\"\noffset = true\ncalibration_records = 200\n";
+  ScratchDir scratch("inverse-broadened-coverage");
+  CalibrationOptions options;
+  options.show_progress = false;
+  options.seed = 21;
+  const Study study = parse_study(known_device_study("30e-6", inverse), "broadened.toml", std::nullopt);
+  const CalibrationBank bank = run_calibration(study, scratch.file("bank.journal"), options);
+  options.seed = 22;
+  const CalibrationBank held_out = run_calibration(study, scratch.file("held_out.journal"), options);
+
+  std::size_t records = 0, count_covered = 0, median_records = 0, median_covered = 0, sd_records = 0, sd_covered = 0;
+  for (const CalibrationSample& s : held_out.samples) {
+    if (!s.valid) continue;
+    const CalibratedEstimate c = calibrate_estimate(s.raw_estimate(), &bank.maps, bank.setup.prior);
+    ++records;
+    count_covered += c.interval_low <= s.true_count() && s.true_count() <= c.interval_high;
+    if (s.count >= 1 && s.true_count() >= 1) {
+      ++median_records;
+      median_covered += c.median_low <= s.true_median() && s.true_median() <= c.median_high;
+    }
+    if (s.count >= 2 && s.true_count() >= 2) {
+      ++sd_records;
+      sd_covered += c.sd_log_low <= s.true_sd_log() && s.true_sd_log() <= c.sd_log_high;
+    }
+  }
+  ASSERT_GE(records, 190u);
+  const double count_coverage = static_cast<double>(count_covered) / static_cast<double>(records);
+  const double median_coverage = static_cast<double>(median_covered) / static_cast<double>(median_records);
+  const double sd_coverage = static_cast<double>(sd_covered) / static_cast<double>(sd_records);
+  std::printf("broadened prior, held-out coverage of the 90 %% intervals: n %.3f (%zu records), median %.3f (%zu), "
+              "sd(ln k) %.3f (%zu)\n",
+              count_coverage, records, median_coverage, median_records, sd_coverage, sd_records);
+  // The count's interval is a run of whole counts: where the estimator is right in ~90 % of a
+  // bin's records, the interval holds a neighbour too and covers ~0.99 (measured 0.990). That
+  // over-coverage is what this bank size gives (docs/inverse.md, "Limits"); under-coverage
+  // is what must not happen.
+  EXPECT_GE(count_coverage, 0.83);
+  EXPECT_GE(median_coverage, 0.83);
+  EXPECT_LE(median_coverage, 0.97);
+  EXPECT_GE(sd_coverage, 0.83);
+  EXPECT_LE(sd_coverage, 0.97);
+}
+
+}  // namespace
+}  // namespace stengmc
