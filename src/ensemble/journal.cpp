@@ -350,15 +350,6 @@ void write_journal_file(const std::string& path, const JournalIdentity& identity
   sync_directory_of(path);
 }
 
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis) {
-  std::uint64_t hash = basis;
-  for (const char c : bytes) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 0x100000001b3ULL;
-  }
-  return hash;
-}
-
 // ---------------------------------------------------------------- Journal
 
 Journal::Journal(std::string path, const JournalIdentity& identity) : path_(std::move(path)) {

@@ -40,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/checksum.hpp"  // fnv1a64, the records' checksum
 #include "ensemble/realisation_record.hpp"
 
 namespace stengmc {
@@ -52,10 +53,6 @@ struct JournalIdentity {
   //! Human text stored in the header (program version, study file) for messages; not compared.
   std::string description;
 };
-
-//! 64-bit FNV-1a over bytes (Fowler, Noll & Vo; offset basis 0xcbf29ce484222325, prime
-//! 0x100000001b3). Chainable: pass the previous hash as `basis`.
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis = 0xcbf29ce484222325ULL);
 
 //! Encodes one record as a journal frame (length, payload, checksum): what a journal
 //! appends, what a shard file holds and what an MPI worker sends to rank 0. `path` names the
