@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/posix_file.hpp"
 #include "core/temporary_file.hpp"
 
@@ -38,6 +39,17 @@ std::string system_message(int error) { return std::generic_category().message(e
 
 std::string how_to_start_afresh(const std::string& path) {
   return "To start afresh, delete " + path + " or run again with --restart.";
+}
+
+bool starts_with_magic(std::string_view file) { return file.substr(0, MAGIC.size()) == MAGIC; }
+
+[[noreturn]] void refuse_foreign(const std::string& path, const std::string& advice) {
+  throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) + "). " + advice);
+}
+
+//! What to do about a file of something else where a journal should be.
+std::string how_to_get_past(const std::string& path) {
+  return "Refusing to overwrite it: move " + path + " away, or choose another output name (--out).";
 }
 
 std::string hex(std::uint64_t value) {
@@ -172,12 +184,14 @@ std::string encode_frame(const RealisationRecord& record, const std::string& pat
   return bytes;
 }
 
-RealisationRecord decode_payload(std::string_view payload, const std::string& path, std::size_t index) {
+//! `advice` says what to do about a file written by another record format (how to start
+//! afresh, or how to make the file again).
+RealisationRecord decode_payload(std::string_view payload, const std::string& path, std::size_t index,
+                                 const std::string& advice) {
   const auto malformed = [&](const std::string& what) {
     return InputError(path + ": record " + std::to_string(index + 1) + " " + what +
-                      ": the journal was written by a program with another record format. The program changed "
-                      "since the interrupted run, so its finished realisations cannot be reused. " +
-                      how_to_start_afresh(path));
+                      ": the file was written by a program with another record format. The program changed "
+                      "since it was written, so its finished realisations cannot be reused. " + advice);
   };
   Decoder in(payload);
   RealisationRecord record;
@@ -278,24 +292,21 @@ struct Header {
   std::uint64_t body_start = 0;  //!< offset of the first record [bytes]
 };
 
-//! The header at the start of `file` (the whole file). It was complete before the file got
-//! its name, so anything wrong with it is not a torn write: refuse rather than overwrite
-//! what may be someone else's file.
-Header parse_header(std::string_view file, const std::string& path) {
+//! The header at the start of `file` (the whole file), whose magic the caller checked. It
+//! was complete before the file got its name, so anything wrong with it is not a torn
+//! write: refuse rather than overwrite what may be someone else's file. `advice` says what
+//! to do about it (how to start afresh, or how to make the file again).
+Header parse_header(std::string_view file, const std::string& path, const std::string& advice) {
   const std::uint64_t fixed = MAGIC.size() + 4 + 8 + 4;
-  if (file.size() < MAGIC.size() || file.substr(0, MAGIC.size()) != MAGIC)
-    throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) +
-                     "); refusing to overwrite it. " + how_to_start_afresh(path));
-  if (file.size() < fixed) throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+  if (file.size() < fixed) throw InputError(path + ": the journal header is damaged. " + advice);
   const auto version = little_endian(file.substr(MAGIC.size(), 4));
   Header header;
   header.study_hash = little_endian(file.substr(MAGIC.size() + 4, 8));
   const auto description_size = little_endian(file.substr(MAGIC.size() + 12, 4));
   if (version != FORMAT_VERSION)
     throw InputError(path + ": journal format version " + std::to_string(version) + ", this program reads version " +
-                     std::to_string(FORMAT_VERSION) + ". " + how_to_start_afresh(path));
-  if (file.size() - fixed < description_size)
-    throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+                     std::to_string(FORMAT_VERSION) + ". " + advice);
+  if (file.size() - fixed < description_size) throw InputError(path + ": the journal header is damaged. " + advice);
   header.description.assign(file.substr(fixed, description_size));
   header.body_start = fixed + description_size;
   return header;
@@ -310,31 +321,38 @@ std::string encode_record_frame(const RealisationRecord& record, const std::stri
 RealisationRecord decode_record_frame(std::string_view frame, const std::string& source) {
   if (!frame_at(frame, 0) || frame.size() != LENGTH_BYTES + little_endian(frame.substr(0, LENGTH_BYTES)) + CHECKSUM_BYTES)
     throw InputError(source + ": a record's checksum does not hold (damaged in transit or on disk)");
-  return decode_payload(frame.substr(LENGTH_BYTES, frame.size() - LENGTH_BYTES - CHECKSUM_BYTES), source, 0);
+  return decode_payload(frame.substr(LENGTH_BYTES, frame.size() - LENGTH_BYTES - CHECKSUM_BYTES), source, 0,
+                        "Run every process of the job with the same stengmc.");
 }
 
-JournalContents read_journal_file(const std::string& path) {
+JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice) {
+  // A FIFO would block the read for ever, a device feed it without end: a regular file only.
+  check_input_file(path, what);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path + ": cannot open: " + system_message(errno));
   std::string file;
   try {
     struct stat status {};
     if (::fstat(fd, &status) != 0) throw_system(path, "cannot read", errno);
+    // The magic before the whole file: a large file of something else is not read into memory.
+    if (!starts_with_magic(read_at(fd, 0, std::min<std::uint64_t>(MAGIC.size(), status.st_size), path)))
+      refuse_foreign(path, advice);
     file = read_at(fd, 0, static_cast<std::uint64_t>(status.st_size), path);
   } catch (...) {
     ::close(fd);
     throw;
   }
   ::close(fd);
-  Header header = parse_header(file, path);
+  Header header = parse_header(file, path, advice);
   JournalContents contents{header.study_hash, std::move(header.description), {}};
   const std::string_view body = std::string_view(file).substr(header.body_start);
   for (std::uint64_t offset = 0; offset < body.size();) {
     if (!frame_at(body, offset))
       throw InputError(path + ": damaged at byte " + std::to_string(header.body_start + offset) +
-                       " (a record whose checksum does not hold): the file cannot be trusted; make it again");
+                       " (a record whose checksum does not hold): the file cannot be trusted. " + advice);
     const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
-    contents.records.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path, contents.records.size()));
+    contents.records.push_back(
+        decode_payload(body.substr(offset + LENGTH_BYTES, length), path, contents.records.size(), advice));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
   }
   return contents;
@@ -401,8 +419,11 @@ void Journal::load(const JournalIdentity& identity) {
   struct stat status {};
   if (::fstat(fd_, &status) != 0) throw_system(path_, "cannot read the journal", errno);
   const auto file_size = static_cast<std::uint64_t>(status.st_size);
+  // The magic before the whole file: a large file of something else is not read into memory.
+  if (!starts_with_magic(read_at(fd_, 0, std::min<std::uint64_t>(MAGIC.size(), file_size), path_)))
+    refuse_foreign(path_, how_to_get_past(path_));
   const std::string file = read_at(fd_, 0, file_size, path_);
-  const Header header = parse_header(file, path_);
+  const Header header = parse_header(file, path_, how_to_start_afresh(path_));
   if (header.study_hash != identity.study_hash)
     throw InputError(path_ + ": this journal belongs to another computation: it was written for " +
                      quoted(header.description) + " (study hash " + hex(header.study_hash) + "), this run is " +
@@ -424,7 +445,8 @@ void Journal::load(const JournalIdentity& identity) {
       offset = *next;
     }
     const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
-    recovered_.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size()));
+    recovered_.push_back(
+        decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size(), how_to_start_afresh(path_)));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
     end_of_good = offset;
   }

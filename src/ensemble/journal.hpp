@@ -71,10 +71,11 @@ struct JournalContents {
   std::vector<RealisationRecord> records;  //!< in file order
 };
 
-//! Reads the whole journal at `path`. Unlike a resume, any damage is refused (InputError
-//! naming the file and the byte offset): a finished file written by write_journal_file is
-//! never torn, so damage there means the file cannot be trusted.
-JournalContents read_journal_file(const std::string& path);
+//! Reads the whole journal at `path`, a regular file (check_input_file; `what` names it:
+//! "the shard file"). Unlike a resume, any damage is refused (InputError naming the file
+//! and the byte offset, then `advice`: how to make the file again): a finished file written
+//! by write_journal_file is never torn, so damage there means the file cannot be trusted.
+JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice);
 
 //! Writes a complete journal at `path` in one go (header and every record, under a
 //! temporary name, fsync'ed, then renamed into place): a reader sees all of it or nothing.
