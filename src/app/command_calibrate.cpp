@@ -96,7 +96,9 @@ void run(const CalibrateOptions& options) {
   }
   if (const auto folder = std::filesystem::path(out).parent_path(); !folder.empty()) std::filesystem::create_directories(folder);
   write_calibration_bank(out, bank);
-  std::filesystem::remove(journal);
+  // The journal of this run, now in the bank; --refit ran none, and what sits at its path
+  // (an interrupted calibration's journal, or anything else) is not its to remove.
+  if (!options.refit) std::filesystem::remove(journal);
 
   const std::size_t invalid = bank.samples.size() - bank.maps.records;
   std::printf("  atoms: %.3g-%.3g N/m, worst check against the forward model %.2g (relative L2), built in %.1f s\n",

@@ -47,7 +47,8 @@ bool starts_with_magic(std::string_view file) { return file.substr(0, MAGIC.size
   throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) + "). " + advice);
 }
 
-//! What to do about a file of something else where a journal should be.
+//! What to do about a file of something else where a journal should be: --restart would
+//! refuse it too (discard_journal), so it is not the advice.
 std::string how_to_get_past(const std::string& path) {
   return "Refusing to overwrite it: move " + path + " away, or choose another output name (--out).";
 }
@@ -368,6 +369,36 @@ void write_journal_file(const std::string& path, const JournalIdentity& identity
   sync_directory_of(path);
 }
 
+void discard_journal(const std::string& path) {
+  const std::string nothing_removed =
+      ": --restart removes only a journal stengmc wrote, and removed nothing. Move it away, or choose another output "
+      "name (--out).";
+  std::error_code error;
+  const auto type = std::filesystem::symlink_status(path, error).type();  // a link is not followed: not ours
+  if (type == std::filesystem::file_type::not_found) return;
+  if (error) throw_system(path, "cannot examine the journal", error.value());
+  if (type != std::filesystem::file_type::regular)
+    throw InputError(path + " is " + describe_file_type(type) + ", not a stengmc journal" + nothing_removed);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw_system(path, "cannot open the journal", errno);
+  try {
+    struct stat status {};
+    if (::fstat(fd, &status) != 0) throw_system(path, "cannot read the journal", errno);
+    if (!S_ISREG(status.st_mode) ||
+        !starts_with_magic(read_at(fd, 0, std::min<std::uint64_t>(MAGIC.size(), status.st_size), path)))
+      throw InputError(path + " is a file that is not a stengmc journal (it does not start with " + std::string(MAGIC) +
+                       ")" + nothing_removed);
+    // A journal another run holds is that run's: removing it would lose what it appends.
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+      throw Error(path + ": the journal is in use by another running stengmc; --restart removed nothing");
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT) throw_system(path, "cannot delete the journal", errno);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+}
+
 // ---------------------------------------------------------------- Journal
 
 Journal::Journal(std::string path, const JournalIdentity& identity) : path_(std::move(path)) {
@@ -375,6 +406,12 @@ Journal::Journal(std::string path, const JournalIdentity& identity) : path_(std:
   std::error_code ignored;  // a folder that cannot be made shows up as the open failing
   if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
 
+  // A FIFO would block the read for ever, a device feed it without end, a folder is no
+  // file: a journal is a regular file or nothing yet.
+  std::error_code error;
+  const auto type = std::filesystem::status(path_, error).type();
+  if (!error && type != std::filesystem::file_type::not_found && type != std::filesystem::file_type::regular)
+    throw InputError(path_ + " is " + describe_file_type(type) + ", not a journal. " + how_to_get_past(path_));
   fd_ = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
   if (fd_ < 0 && errno == ENOENT) {
     create(identity);

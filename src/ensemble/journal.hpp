@@ -82,12 +82,19 @@ JournalContents read_journal_file(const std::string& path, const std::string& wh
 void write_journal_file(const std::string& path, const JournalIdentity& identity,
                         const std::vector<RealisationRecord>& records);
 
+//! What --restart does: deletes the journal at `path`, if there is one. Anything else there
+//! (a device, a FIFO, a folder, a link, a file that does not start as a journal) is refused
+//! with an InputError naming it and what it is, and left as it was: --restart deletes only
+//! what stengmc wrote. A journal another running stengmc holds is refused too (Error).
+void discard_journal(const std::string& path);
+
 //! An open journal file. Errors (disk full, permission) throw Error naming the file and the
 //! system's reason; an unusable existing file (another identity, another record format, not
 //! a journal) throws InputError saying how to start afresh.
 class Journal {
  public:
-  //! Opens `path` for appending, creating it (with its header) if it does not exist. An
+  //! Opens `path` for appending, creating it (with its header) if it does not exist (a
+  //! path where something other than a regular file sits is refused: InputError). An
   //! existing file's intact records are read and a torn or corrupt tail is cut off; if its
   //! study hash differs from `identity.study_hash`, throws InputError naming the file and
   //! both descriptions (the file is left untouched).

@@ -3,6 +3,7 @@
 // parameters, a calibration bitwise the same on 1 and 2 threads, and a record inverted end
 // to end with its figure.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <boost/random/normal_distribution.hpp>
 #include <cstdio>
@@ -175,6 +176,33 @@ TEST_F(InvertCommand, InvertsARecordAndDrawsItsFigure) {
   EXPECT_NEAR(k[1] / 85.0, 1.0, 1e-2);
   EXPECT_EQ(file.string_attribute("/", "file_type"), "stengmc-inverse");
   EXPECT_TRUE(std::filesystem::exists(scratch.file("out.png"))) << r.output;
+}
+
+// ---------------------------------------------------------------- journals and banks (issue 22)
+
+//! A copy of the suite's bank in `scratch`, to damage.
+std::string bank_copy(const ScratchDir& scratch, const std::string& source) {
+  const std::string copy = scratch.file("bank.h5");
+  std::filesystem::copy_file(source, copy, std::filesystem::copy_options::overwrite_existing);
+  return copy;
+}
+
+//! calibrate --restart deleted whatever sat at <bank>.journal (a FIFO, a folder); --refit,
+//! which runs no journal, deleted it too. Both leave it now, and --restart refuses it.
+TEST_F(InvertCommand, CalibrateRemovesOnlyItsOwnJournal) {
+  ScratchDir scratch("calibrate-journal-path");
+  const std::string bank = bank_copy(scratch, scratch_->file("bank.h5")), journal = bank + ".journal";
+  ASSERT_EQ(::mkfifo(journal.c_str(), 0666), 0);
+  const auto refused =
+      run_cli("calibrate " + scratch_->file("device.toml") + " --restart -o " + bank + " -j 2", scratch, "timeout 60");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find(journal + " is a FIFO"), std::string::npos) << refused.output;
+  EXPECT_TRUE(std::filesystem::is_fifo(journal));
+  std::filesystem::remove(journal);
+  std::filesystem::create_directory(journal);
+  const auto refit = run_cli("calibrate " + scratch_->file("device.toml") + " --refit -o " + bank, scratch, "timeout 60");
+  EXPECT_EQ(refit.exit_code, 0) << refit.output;
+  EXPECT_TRUE(std::filesystem::is_directory(journal));
 }
 
 }  // namespace
