@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
+#include "app/validators.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "ensemble/process_world.hpp"
@@ -127,7 +128,8 @@ void add_calibrate_command(CLI::App& app) {
   command->add_option("study", options->study_file, "The known device's study file, with its [inverse] prior")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Bank file (default results/<study>_bank.h5)");
+  command->add_option("-o,--out", options->out, "Bank file (default results/<study>_bank.h5)")
+      ->check(non_empty_path());
   command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   command->add_flag("--restart", options->restart, "Discard an interrupted calibration's journal instead of resuming it");
   command->add_option("--records", options->records, "Simulated records (default: [inverse] calibration_records)")

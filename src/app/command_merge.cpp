@@ -67,7 +67,8 @@ void add_merge_command(CLI::App& app) {
   command->add_option("shards", options->shards, "The shard files, all n of them, each once")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (default: the study's [output] file)");
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: the study's [output] file)")
+      ->check(non_empty_path());
   command->add_option("--study", options->study,
                       "The study file, if it is no longer where the shard runs read it (it must be the same text)")
       ->check(CLI::ExistingFile);

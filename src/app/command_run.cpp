@@ -91,7 +91,8 @@ void add_run_command(CLI::App& app) {
   command->add_option("study", options->study_file, "Study file (TOML; see studies/ and docs/study-files.md)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)")
+      ->check(non_empty_path());
   CLI::Option* realisation = command->add_option(
       "-r,--realisation", options->realisation,
       "Run this one realisation of a random surface and write its full run file (also for an [ensemble] "
