@@ -129,7 +129,7 @@ def plot_run(path):
         title += "  [INVALID: x reached l (red line); circuit cut there]"
     fig.suptitle("\n".join(textwrap.wrap(title, 110)), fontsize=9)
     fig.tight_layout()
-    out = path.rsplit(".", 1)[0] + ".png"
+    out = os.path.splitext(path)[0] + ".png"
     fig.savefig(out, dpi=110)
     plt.close(fig)
     print(f"figure: {out}")
@@ -201,7 +201,7 @@ def plot_spectra(path):
         ax.set_title("spectrogram of V", fontsize=9)
     fig.suptitle("\n".join(textwrap.wrap(attribute(f, "title") or path, 110)), fontsize=9)
     fig.tight_layout()
-    out = path.rsplit(".", 1)[0] + "_spectrum.png"
+    out = os.path.splitext(path)[0] + "_spectrum.png"
     fig.savefig(out, dpi=110)
     plt.close(fig)
     print(f"figure: {out}")

@@ -279,6 +279,39 @@ TEST(OutputPath, AnOutputThatIsNotARegularFileIsRefused) {
   EXPECT_TRUE(std::filesystem::is_directory(scratch.file("folder.h5")));
 }
 
+//! `plot` writes <stem>.png (and <stem>_spectrum.png) beside the file: it wrote a PNG into a
+//! character device there, blamed a FIFO r.png on r.h5, and would write the figure over the
+//! very file plotted when that file's name ends in .png. Its figures get the output checks.
+TEST(OutputPath, PlotRefusesAFigurePathThatIsNotARegularFileOrTheFilePlotted) {
+  ScratchDir scratch("plot-figure-path");
+  const std::string study = scratch.write("study.toml", RUN_STUDY);
+  const std::string run = scratch.file("r.h5");
+  ASSERT_EQ(run_cli("run " + study + " -o " + run, scratch).exit_code, 0);
+  std::vector<std::pair<std::string, std::string>> figures;
+  const std::string device = scratch.file("r.png");
+  if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) figures.push_back({device, "a character device"});
+  const std::string fifo = scratch.file("r_spectrum.png");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  figures.push_back({fifo, "a FIFO"});
+  for (const auto& [figure, kind] : figures) {
+    SCOPED_TRACE(figure);
+    const auto result = run_cli("plot " + run, scratch, "timeout 60");
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    EXPECT_TRUE(contains(result.output, "the figure " + figure + " exists and is " + kind)) << result.output;
+    EXPECT_FALSE(contains(result.output, run + ": cannot be plotted")) << result.output;
+    EXPECT_TRUE(kind == "a FIFO" ? std::filesystem::is_fifo(figure) : std::filesystem::is_character_file(figure));
+    std::filesystem::remove(figure);  // the next case's figure is the one still in the way
+  }
+  // A run file named like its own figure.
+  const std::string named_png = scratch.file("f.png");
+  std::filesystem::copy_file(run, named_png);
+  const std::string before = read_bytes(named_png);
+  const auto onto = run_cli("plot " + named_png, scratch, "timeout 60");
+  EXPECT_EQ(onto.exit_code, 2) << onto.output;
+  EXPECT_TRUE(contains(onto.output, "the figure " + named_png + " is the input file " + named_png)) << onto.output;
+  EXPECT_TRUE(read_bytes(named_png) == before) << "the file plotted was overwritten";
+}
+
 // ---------------------------------------------------------------- kills and stale temporaries
 
 //! Starts `stengmc arguments` with the fault shim stalling its first write to `folder`;
