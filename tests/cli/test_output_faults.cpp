@@ -1,11 +1,11 @@
 // Faults around output files, through the real command line (docs/faults.md, "Rejected inputs and
 // faults"):
-//  - a full disk: every command that writes HDF5 is run with its output on a disk that is
-//    already full and on one that fills while the file is written; each must exit 1 with a
-//    message naming the output file and the system's "No space left on device", leave
-//    nothing in the output folder (no temporary, no partial file) and leave its inputs
-//    untouched. An ensemble must keep its journal whole, so that the next run, with space
-//    again, resumes it to the datasets of an uninterrupted run;
+//  - a full disk: every command that writes a file (HDF5, or export-netlist's netlist) is run
+//    with its output on a disk that is already full and on one that fills while the file is
+//    written; each must exit 1 with a message naming the output file and the system's "No
+//    space left on device", leave nothing in the output folder (no temporary, no partial
+//    file) and leave its inputs untouched. An ensemble must keep its journal whole, so that
+//    the next run, with space again, resumes it to the datasets of an uninterrupted run;
 //  - an output that is one of the command's inputs (also through a link), or not a regular
 //    file (a device, a FIFO, a folder): refused with exit 2 before anything runs, the input
 //    byte for byte as it was;
@@ -108,6 +108,7 @@ std::string voltage_csv() {
 struct Command {
   std::string name;
   std::string arguments;  //!< with OUT standing for the output path
+  std::string extension = ".h5";
 };
 
 //! Inputs of every command, written into `scratch` (never onto the full disk).
@@ -119,7 +120,9 @@ std::vector<Command> commands(const ScratchDir& scratch) {
   return {{"run", "run " + study + " -o OUT"},
           {"circuit", "circuit " + csv + " -R 1e6 -o OUT"},
           {"spectrum", "spectrum " + voltage + " -o OUT"},
-          {"surface", "surface " + surface + " -k 20 -o OUT"}};
+          {"surface", "surface " + surface + " -k 20 -o OUT"},
+          // Its netlist (~290 kB) was written through an ofstream, which keeps no reason.
+          {"export-netlist", "export-netlist " + study + " -o OUT", ".cir"}};
 }
 
 std::string with_output(std::string arguments, const std::string& out) {
@@ -136,7 +139,7 @@ TEST(FullDisk, EveryCommandFailsCleanlyNamingTheFileAndTheReason) {
     std::filesystem::create_directories(disk);
     for (const Command& command : commands(scratch)) {
       SCOPED_TRACE(command.name + " with " + std::to_string(free_bytes) + " bytes free");
-      const std::string out = disk + "/" + command.name + ".h5";
+      const std::string out = disk + "/" + command.name + command.extension;
       const std::vector<std::string> inputs_before = files_in(scratch.file(""));
       const auto result = run_cli(with_output(command.arguments, out), scratch, full_disk(disk, free_bytes));
       EXPECT_EQ(result.exit_code, 1) << result.output;
@@ -148,7 +151,7 @@ TEST(FullDisk, EveryCommandFailsCleanlyNamingTheFileAndTheReason) {
       // With space again the same command succeeds: nothing stale is in the way.
       const auto again = run_cli(with_output(command.arguments, out), scratch);
       EXPECT_EQ(again.exit_code, 0) << again.output;
-      EXPECT_EQ(files_in(disk), std::vector<std::string>{command.name + ".h5"});
+      EXPECT_EQ(files_in(disk), std::vector<std::string>{command.name + command.extension});
       std::filesystem::remove(out);
     }
   }
