@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
+#include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/record_input.hpp"
@@ -213,7 +214,7 @@ void add_invert_command(CLI::App& app) {
       ->required()
       ->check(non_empty_path());
   command->add_flag("-f,--figures", options->figures, "Also render the PNG figure (spectrum with the fitted lines, P(n), stiffness law)");
-  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, MAX_THREADS));
   command->callback([options] { run(*options); });
 }
 
