@@ -206,6 +206,25 @@ TEST(FullDisk, AnEnsembleOnAFullDiskSaysSoAndLeavesNothing) {
   EXPECT_TRUE(files_in(disk).empty()) << "left behind: " << files_in(disk).front();
 }
 
+//! plot's figures on a full disk: it said "cannot be plotted ... (a damaged or partial
+//! file?)" with exit 2, as if the input were bad, and left a partial (or empty) PNG that
+//! looks like a figure. Now the figure is written whole or not at all (the scripts write a
+//! temporary and rename it), and a failed write is exit 1 with the system's reason.
+TEST(FullDisk, PlotLeavesNoPartialFigureAndSaysWhy) {
+  ScratchDir scratch("full-disk-plot");
+  const std::string disk = scratch.file("disk");
+  std::filesystem::create_directories(disk);
+  const std::string run = disk + "/r.h5";
+  ASSERT_EQ(run_cli("run " + scratch.write("run.toml", RUN_STUDY) + " -o " + run, scratch).exit_code, 0);
+  for (const long long free_bytes : {0LL, 20000LL}) {
+    SCOPED_TRACE(std::to_string(free_bytes) + " bytes free");
+    const auto result = run_cli("plot " + run, scratch, full_disk(disk, free_bytes));
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_TRUE(contains(result.output, disk + "/r.png: cannot write the figure: " + std::strerror(ENOSPC))) << result.output;
+    EXPECT_EQ(files_in(disk), std::vector<std::string>{"r.h5"});
+  }
+}
+
 // ---------------------------------------------------------------- output = input
 
 struct Refusal {
