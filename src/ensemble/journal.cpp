@@ -5,15 +5,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <bit>
 #include <cerrno>
 #include <filesystem>
 #include <optional>
-#include <span>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
+#include "core/byte_codec.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
 #include "core/posix_file.hpp"
@@ -63,91 +62,6 @@ std::string quoted(const std::string& description) {
   return description.empty() ? std::string("(no description)") : "\"" + description + "\"";
 }
 
-// ---------------------------------------------------------------- encoding
-
-class Encoder {
- public:
-  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void u64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void text(std::string_view s) {
-    u32(static_cast<std::uint32_t>(s.size()));
-    bytes_.append(s);
-  }
-  void doubles(std::span<const double> values) {
-    for (double v : values) f64(v);
-  }
-  void vector(const std::vector<double>& values) {
-    u64(values.size());
-    doubles(values);
-  }
-  std::string& bytes() { return bytes_; }
-
- private:
-  std::string bytes_;
-};
-
-//! Reads a payload whose checksum passed. Running out of bytes or a count that differs from
-//! this program's then means the file was written by another format, not torn: the
-//! caller's `malformed` throws the InputError.
-class Decoder {
- public:
-  explicit Decoder(std::string_view bytes) : bytes_(bytes) {}
-  bool u8(std::uint8_t& v) {
-    if (left() < 1) return false;
-    v = static_cast<std::uint8_t>(bytes_[position_++]);
-    return true;
-  }
-  bool u32(std::uint32_t& v) {
-    std::uint64_t wide = 0;
-    if (!little_endian(4, wide)) return false;
-    v = static_cast<std::uint32_t>(wide);
-    return true;
-  }
-  bool u64(std::uint64_t& v) { return little_endian(8, v); }
-  bool text(std::string& s) {
-    std::uint32_t n = 0;
-    if (!u32(n) || left() < n) return false;
-    s.assign(bytes_.substr(position_, n));
-    position_ += n;
-    return true;
-  }
-  bool doubles(std::size_t n, double* out) {
-    if (left() / 8 < n) return false;  // before allocating anything of size n
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint64_t bits = 0;
-      little_endian(8, bits);
-      out[i] = std::bit_cast<double>(bits);
-    }
-    return true;
-  }
-  bool vector(std::vector<double>& values) {
-    std::uint64_t n = 0;
-    if (!u64(n) || left() / 8 < n) return false;
-    values.resize(n);
-    return doubles(n, values.data());
-  }
-  [[nodiscard]] std::size_t left() const { return bytes_.size() - position_; }
-
- private:
-  bool little_endian(std::size_t width, std::uint64_t& v) {
-    if (left() < width) return false;
-    v = 0;
-    for (std::size_t i = 0; i < width; ++i)
-      v |= std::uint64_t{static_cast<unsigned char>(bytes_[position_ + i])} << (8 * i);
-    position_ += width;
-    return true;
-  }
-
-  std::string_view bytes_;
-  std::size_t position_ = 0;
-};
-
 //! The framed record: length, payload, checksum.
 std::string encode_frame(const RealisationRecord& record, const std::string& path) {
   const std::size_t asperities = record.asperity_count();
@@ -155,7 +69,7 @@ std::string encode_frame(const RealisationRecord& record, const std::string& pat
     if (column.size() != asperities)
       throw Error(path + ": realisation " + std::to_string(record.realisation) +
                   ": asperity columns of different lengths cannot be journalled");
-  Encoder out;
+  ByteEncoder out;
   out.u32(0);  // payload length, filled in below
   out.u64(record.realisation);
   out.u8(record.valid ? 1 : 0);
@@ -194,7 +108,7 @@ RealisationRecord decode_payload(std::string_view payload, const std::string& pa
                       ": the file was written by a program with another record format. The program changed "
                       "since it was written, so its finished realisations cannot be reused. " + advice);
   };
-  Decoder in(payload);
+  ByteDecoder in(payload);
   RealisationRecord record;
   std::uint8_t valid = 0;
   std::uint32_t scalars = 0, columns = 0;
@@ -279,7 +193,7 @@ std::optional<std::uint64_t> next_frame(std::string_view body, std::uint64_t fro
 
 //! The header: magic, format version, study hash, description.
 std::string encode_header(const JournalIdentity& identity) {
-  Encoder header;
+  ByteEncoder header;
   header.bytes().append(MAGIC);
   header.u32(FORMAT_VERSION);
   header.u64(identity.study_hash);
