@@ -11,6 +11,7 @@
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
 #include "inverse/naive_count.hpp"
+#include "io/calibration_bank_codec.hpp"
 #include "io/calibration_bank_records.hpp"
 #include "io/checksummed_tables.hpp"
 #include "io/guarded_read.hpp"
@@ -226,15 +227,6 @@ auto read_bank(const std::string& path, Read read) -> decltype(read(std::declval
   }
 }
 
-//! A bank is read in a child process first: HDF5 may crash or loop on a damaged file
-//! (io/guarded_read.hpp), and a crash there must be an error naming the bank, not ours.
-template <class Read>
-auto read_guarded(const std::string& path, Read read) {
-  check_input_file(path, "the calibration bank");
-  read_in_child_first(path, [&] { (void)read_bank(path, read); });
-  return read_bank(path, read);
-}
-
 StoredBank read_stored_bank(const std::string& path, const Hdf5Reader& f) {
   StoredBank bank = read_identity_and_atoms(path, f);
   const ChecksumReader tables = bank_tables(f, path);
@@ -246,31 +238,39 @@ StoredBank read_stored_bank(const std::string& path, const Hdf5Reader& f) {
 
 }  // namespace
 
+// A bank is read by a child process only (io/guarded_read.hpp), which hands what it read
+// back as bytes (io/calibration_bank_codec.hpp): HDF5 may crash, loop or - on a damaged
+// global heap, found by the bank's fuzz - corrupt memory without crashing on a damaged file,
+// and none of that may reach the command.
+
 StoredBank read_calibration_bank(const std::string& path) {
-  return read_guarded(path, [&](const Hdf5Reader& f) { return read_stored_bank(path, f); });
+  check_input_file(path, "the calibration bank");
+  return decode_stored_bank(read_in_child(
+      path, [&] { return encode_stored_bank(read_bank(path, [&](const Hdf5Reader& f) { return read_stored_bank(path, f); })); }));
 }
 
-BankIdentity bank_identity_of(const std::string& path) {
-  return read_guarded(path, [&](const Hdf5Reader& f) { return read_stored_bank(path, f).identity; });
-}
+BankIdentity bank_identity_of(const std::string& path) { return read_calibration_bank(path).identity; }
 
 CalibrationBank read_calibration_bank_records(const std::string& path, const InverseSetup& setup) {
-  return read_guarded(path, [&](const Hdf5Reader& f) {
-    const StoredBank stored = read_stored_bank(path, f);
-    CalibrationBank bank;
-    bank.setup = setup;
-    bank.device_study_file = f.string_attribute("/", "input_file");
-    bank.device_study_text = f.string_attribute("/", "input_text");
-    bank.prior_study_text = f.string_attribute("/", "prior_study_text");
-    bank.atoms = stored.atoms;
-    bank.threads = static_cast<int>(f.integer_attribute("/", "threads").value_or(1));
-    bank.seconds = f.number_attribute("/", "seconds").value_or(0.0);
-    bank.atom_seconds = f.number_attribute("/", "atom_seconds").value_or(0.0);
-    const ChecksumReader tables = bank_tables(f, path);
-    bank.samples = read_bank_records(tables);
-    for (const CalibrationSample& s : bank.samples) bank.estimation_cpu_seconds += s.seconds;
-    return bank;
-  });
+  check_input_file(path, "the calibration bank");
+  CalibrationBank bank = decode_bank_with_records(read_in_child(path, [&] {
+    return encode_bank_with_records(read_bank(path, [&](const Hdf5Reader& f) {
+      const StoredBank stored = read_stored_bank(path, f);
+      CalibrationBank read;
+      read.device_study_file = f.string_attribute("/", "input_file");
+      read.device_study_text = f.string_attribute("/", "input_text");
+      read.prior_study_text = f.string_attribute("/", "prior_study_text");
+      read.atoms = stored.atoms;
+      read.threads = static_cast<int>(f.integer_attribute("/", "threads").value_or(1));
+      read.seconds = f.number_attribute("/", "seconds").value_or(0.0);
+      read.atom_seconds = f.number_attribute("/", "atom_seconds").value_or(0.0);
+      read.samples = read_bank_records(bank_tables(f, path));
+      for (const CalibrationSample& s : read.samples) read.estimation_cpu_seconds += s.seconds;
+      return read;
+    }));
+  }));
+  bank.setup = setup;
+  return bank;
 }
 
 }  // namespace stengmc

@@ -37,7 +37,7 @@ struct StoredBank {
   CalibrationMaps maps;
 };
 
-//! Reads a bank (in a child process first: io/guarded_read.hpp), verifying every checksum.
+//! Reads a bank (in a child process only: io/guarded_read.hpp), verifying every checksum.
 //! @throws InputError naming the file when it is not a regular file, not a stengmc
 //! calibration bank of this format, or damaged (naming the table whose checksum fails).
 StoredBank read_calibration_bank(const std::string& path);
