@@ -31,7 +31,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import array, attribute  # noqa: E402
+from stengmc_h5 import array, attribute, save_figure  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
@@ -475,7 +475,7 @@ def plot_overview(e, out):
         ax.set_title(f"({letter}) " + ax.get_title(), fontsize=9)
     fig.suptitle(e.suptitle(""), fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out)
     plt.close(fig)
 
 
@@ -635,7 +635,7 @@ def plot_sweep(e, out):
         ax.set_title(f"({letter}) " + ax.get_title(), fontsize=9)
     fig.suptitle(e.suptitle(" sweep"), fontsize=10)
     fig.tight_layout(rect=(0, 0.025 * (len(notes) + 1) if notes else 0, 1, 1))
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out)
     plt.close(fig)
 
 

@@ -26,7 +26,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
-from stengmc_h5 import attribute  # noqa: E402
+from stengmc_h5 import attribute, save_figure  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 
 FILE_TYPE = "stengmc-inverse"
@@ -145,7 +145,7 @@ def plot_inverse(path, record=0):
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     out = os.path.splitext(path)[0] + ".png"
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out)
     plt.close(fig)
     print(out)
 

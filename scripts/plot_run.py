@@ -22,7 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import attribute, refuse  # noqa: E402
+from stengmc_h5 import attribute, refuse, save_figure  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_ensemble  # noqa: E402  (beside this script)
@@ -129,8 +129,8 @@ def plot_run(path):
         title += "  [INVALID: x reached l (red line); circuit cut there]"
     fig.suptitle("\n".join(textwrap.wrap(title, 110)), fontsize=9)
     fig.tight_layout()
-    out = path.rsplit(".", 1)[0] + ".png"
-    fig.savefig(out, dpi=110)
+    out = os.path.splitext(path)[0] + ".png"
+    save_figure(fig, out)
     plt.close(fig)
     print(f"figure: {out}")
 
@@ -201,8 +201,8 @@ def plot_spectra(path):
         ax.set_title("spectrogram of V", fontsize=9)
     fig.suptitle("\n".join(textwrap.wrap(attribute(f, "title") or path, 110)), fontsize=9)
     fig.tight_layout()
-    out = path.rsplit(".", 1)[0] + "_spectrum.png"
-    fig.savefig(out, dpi=110)
+    out = os.path.splitext(path)[0] + "_spectrum.png"
+    save_figure(fig, out)
     plt.close(fig)
     print(f"figure: {out}")
 
@@ -218,7 +218,7 @@ def plot_compare(paths, out):
     ax.set_ylabel("V [mV]")
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out)
     print(f"figure: {out}")
 
 

@@ -23,7 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import array, attribute  # noqa: E402
+from stengmc_h5 import array, attribute, save_figure  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
@@ -408,7 +408,7 @@ def plot_surface(path):
     fig.suptitle("\n".join(w for line in title.split("\n") for w in textwrap.wrap(line, 130)), fontsize=10)
     fig.tight_layout()
     out = os.path.splitext(path)[0] + ".png"
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out)
     plt.close(fig)
     print(f"figure: {out}")
     return out

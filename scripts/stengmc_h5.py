@@ -1,6 +1,7 @@
 """What every stengmc figure script needs from an output file: text attributes and a
 checked open (docs/output-files.md). Debian's python3-h5py and numpy."""
 import os
+import socket
 import sys
 
 import h5py
@@ -13,6 +14,25 @@ def refuse(message):
     """Stops with `message` and exit code 2, stengmc's code for bad input (README: exit codes)."""
     print(message, file=sys.stderr)
     sys.exit(2)
+
+
+def save_figure(fig, out, dpi=110):
+    """Writes `fig` as the PNG `out`, whole or not at all, as stengmc writes its outputs: under
+    the temporary name <out>.<host>.<pid>.tmp beside it, renamed into place when complete. A
+    write that fails (a full disk) removes the temporary and stops with the system's reason
+    and exit code 1, a failure that is not bad input: no partial figure is left to look like
+    a whole one."""
+    temporary = f"{out}.{socket.gethostname()}.{os.getpid()}.tmp"
+    try:
+        fig.savefig(temporary, dpi=dpi, format="png")
+        os.replace(temporary, out)
+    except OSError as e:
+        try:
+            os.remove(temporary)
+        except OSError:
+            pass
+        print(f"{out}: cannot write the figure: {e.strerror or e}", file=sys.stderr)
+        sys.exit(1)
 
 
 def attribute(node, name, default=""):

@@ -4,11 +4,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "app/install_layout.hpp"
 #include "core/error.hpp"
 #include "io/guarded_read.hpp"
+#include "io/output_path.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
 #include "io/run_file.hpp"
@@ -43,9 +46,20 @@ void check_plottable(const std::string& path) {
   check_format_version(file, path, RUN_FILE_FORMAT_VERSION);
 }
 
+//! Every PNG the figure scripts may write for `h5_path`: <stem>.png, and <stem>_spectrum.png
+//! (a run with spectra) or <stem>_sweep.png (an ensemble sweep), beside it.
+std::vector<std::string> figure_paths(const std::string& h5_path) {
+  const std::string stem = std::filesystem::path(h5_path).replace_extension().string();
+  return {stem + ".png", stem + "_spectrum.png", stem + "_sweep.png"};
+}
+
 }  // namespace
 
 int render_figures(const std::string& h5_path) {
+  // The scripts write where they are told: a device or a FIFO there would take a PNG (or
+  // block), and a file named like a figure may be the very file plotted.
+  for (const std::string& figure : figure_paths(h5_path))
+    check_output_path(figure, {{h5_path, "the file to plot"}}, "the figure");
   const std::string script = (scripts_dir() / "plot_run.py").string();
   const std::string command = python() + " " + quoted(script) + " " + quoted(h5_path);
   std::fflush(stdout);  // keep our lines ahead of the script's in a pipe

@@ -185,7 +185,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
   if (options.only) {
     run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook, nullptr);
   } else {
-    if (options.restart) std::filesystem::remove(journal_path);
+    if (options.restart) discard_journal(journal_path);
     const std::uint64_t identity =
         hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
     Journal journal(journal_path, {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +

@@ -15,6 +15,11 @@
 
 namespace stengmc {
 
+//! The most threads a command or the Python module starts: far above any machine's cores
+//! (extra threads only wait), far below what makes the thread library fail to start them
+//! (100 000 crashed the Python module).
+inline constexpr int MAX_THREADS = 1024;
+
 struct EnsembleOptions {
   std::string progress_label = "ensemble";  //!< e.g. "point 3/14" in a sweep
   int threads = 0;                     //!< 0: OpenMP's default (OMP_NUM_THREADS or the cores)

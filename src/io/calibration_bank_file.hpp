@@ -15,6 +15,10 @@
 //!   /records/        one entry per simulated record: truth, raw estimate, naive counts;
 //!                    flat k lists with offsets (true_stiffness / true_offset, stiffness,
 //!                    log_stiffness_se / estimate_offset)
+//! bank_format_version 2: every table carries its checksum, and so do the numeric
+//! attributes of /atoms and /maps (io/checksummed_tables.hpp); every reader verifies them
+//! all, so a damaged bank is refused naming the table, never used. Format 1 (no checksums)
+//! is refused with the advice to make the bank again.
 #include <string>
 
 #include "inverse/calibration_run.hpp"
@@ -33,7 +37,9 @@ struct StoredBank {
   CalibrationMaps maps;
 };
 
-//! @throws InputError when the file is not a stengmc calibration bank (or a newer format).
+//! Reads a bank (in a child process only: io/guarded_read.hpp), verifying every checksum.
+//! @throws InputError naming the file when it is not a regular file, not a stengmc
+//! calibration bank of this format, or damaged (naming the table whose checksum fails).
 StoredBank read_calibration_bank(const std::string& path);
 
 //! What a bank was made from (its identity alone).

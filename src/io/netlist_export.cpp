@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "circuit/steng_netlist.hpp"
 #include "core/build_info.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "core/posix_file.hpp"
 #include "core/temporary_file.hpp"
 
 namespace stengmc {
@@ -93,13 +93,11 @@ std::string export_netlist_text(const Study& study, const RunResult& result) {
 void write_netlist_file(const std::string& path, const Study& study, const RunResult& result) {
   const std::string text = export_netlist_text(study, result);
   TemporaryFile temporary(path);
-  {
-    std::ofstream file(temporary.path(), std::ios::binary);
-    file << text;
-    file.flush();
-    if (!file) throw Error("cannot write " + path + " (as " + temporary.path() + ")");
-  }
+  // The checked writes of every output (core/posix_file.hpp): a full disk is reported with
+  // the system's reason, which an ofstream does not keep.
+  write_file_durably(temporary.path(), text, path);
   temporary.commit();
+  sync_directory_of(path);
 }
 
 }  // namespace stengmc

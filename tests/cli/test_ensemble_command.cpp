@@ -6,6 +6,8 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -155,6 +158,67 @@ TEST(EnsembleCommand, AJournalOfAnotherStudyIsRefusedUnlessRestarted) {
   const auto restarted = run_cli("run " + study + " --restart -o " + out, scratch);
   EXPECT_EQ(restarted.exit_code, 0) << restarted.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+//! What sits at `path`, for checking it was left alone: its type and, for a folder, its entries.
+std::string what_is_at(const std::string& path) {
+  const auto status = std::filesystem::symlink_status(path);
+  std::string text = std::to_string(static_cast<int>(status.type()));
+  if (status.type() == std::filesystem::file_type::directory)
+    for (const auto& entry : std::filesystem::directory_iterator(path)) text.append(" ").append(entry.path().filename().string());
+  return text;
+}
+
+//! --restart deleted whatever sat at <out>.journal: a device node, a FIFO, an empty folder
+//! (and a non-empty one gave a raw "filesystem error"). It removes only a regular file that
+//! starts as a stengmc journal; anything else is refused, named with what it is, and left as
+//! it was. Without --restart, a FIFO there is refused too instead of failing to be read.
+TEST(EnsembleCommand, RestartRemovesOnlyAStengmcJournal) {
+  ScratchDir scratch("ensemble-restart");
+  const std::string study = scratch.write("study.toml", study_text(2, "trace_realisations = []\n"));
+  const std::string out = scratch.file("out.h5"), journal = out + ".journal";
+  struct Case {
+    std::string what;                             //!< how the message names it
+    std::function<bool(const std::string&)> make;  //!< makes it at the path; false: cannot here
+  };
+  const std::vector<Case> cases = {
+      {"a FIFO", [](const std::string& p) { return ::mkfifo(p.c_str(), 0666) == 0; }},
+      // A copy of /dev/null's node: only root may make one.
+      {"a character device", [](const std::string& p) { return ::mknod(p.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0; }},
+      {"a folder", [](const std::string& p) { return std::filesystem::create_directory(p); }},
+      {"a folder", [](const std::string& p) {
+         std::filesystem::create_directory(p);
+         std::ofstream(p + "/results.h5") << "someone's data";
+         return true;
+       }},
+      {"a symbolic link", [&](const std::string& p) {
+         { Journal real(scratch.file("real.journal"), {.study_hash = 1, .description = "a journal elsewhere"}); }
+         std::filesystem::create_symlink(scratch.file("real.journal"), p);
+         return true;
+       }},
+      {"a file that is not a stengmc journal", [](const std::string& p) {
+         std::ofstream(p) << "someone's notes";
+         return true;
+       }},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::filesystem::remove_all(journal);
+    if (!c.make(journal)) continue;  // a device node without root
+    const std::string before = what_is_at(journal);
+    const auto refused = run_cli("run " + study + " --restart -o " + out, scratch, "timeout 60");
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_NE(refused.output.find(journal + " is " + c.what), std::string::npos) << refused.output;
+    EXPECT_EQ(refused.output.find("filesystem error"), std::string::npos) << refused.output;
+    EXPECT_EQ(what_is_at(journal), before);
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  std::filesystem::remove_all(journal);
+  ASSERT_EQ(::mkfifo(journal.c_str(), 0666), 0);
+  const auto resumed = run_cli("run " + study + " -o " + out, scratch, "timeout 60");
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+  EXPECT_NE(resumed.output.find(journal + " is a FIFO"), std::string::npos) << resumed.output;
+  EXPECT_TRUE(std::filesystem::is_fifo(journal));
 }
 
 // Short Model 2 runs of the lognormal-count surface; `surface` names the surface file.
