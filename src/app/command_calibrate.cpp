@@ -34,7 +34,7 @@ std::string bank_table(const CalibrationBank& bank) {
     const char* label;
     std::size_t low, high;
   };
-  const Bin bins[] = {{"all", 0, 1000}, {"n 1-4", 1, 4}, {"n 5-8", 5, 8}, {"n 9-12", 9, 12}, {"n 13-16", 13, 16}};
+  const Bin bins[] = {{"all", 0, 1000}, {"n 0", 0, 0}, {"n 1-4", 1, 4}, {"n 5-8", 5, 8}, {"n 9-12", 9, 12}, {"n 13-16", 13, 16}};
   std::string out = "  records     n RMSE   exact    naive FFT RMSE   naive exact\n";
   const std::size_t t = bank.maps.naive_threshold_index;
   for (const Bin& b : bins) {

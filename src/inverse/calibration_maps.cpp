@@ -111,7 +111,8 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
     const std::size_t first = prior.count_min + b * POPULATION_BIN_COUNTS, last = first + POPULATION_BIN_COUNTS - 1;
     std::vector<double> median_scores, sd_scores, all_median, all_sd;
     for (const CalibrationSample& s : samples) {
-      if (!s.valid || s.count == 0) continue;
+      // The population needs lines on both sides: nothing slides in the record, or nothing was found.
+      if (!s.valid || s.count == 0 || s.true_count() == 0) continue;
       const bool in_bin = s.count >= first && s.count <= last;
       const double m = std::abs(std::log(s.median / s.true_median())) / median_log_scale(s.stiffness, s.log_stiffness_se);
       all_median.push_back(m);

@@ -51,8 +51,19 @@ InverseSetup inverse_setup(const Study& study, std::optional<RecordGrid> grid) {
                      "); lines and the noise band above them need at least " +
                      format_number(2.0 * NYQUIST_MARGIN * f_high) + " Hz");
   check_device_over_prior(study, setup.device, setup.prior, setup.grid);
+  check_prior_over_device(study, setup.device, setup.prior, setup.grid);
   setup.identity = bank_identity(setup.device, setup.prior, setup.grid);
   return setup;
+}
+
+double one_asperity_rms_v(const AtomTable& atoms, const InversePrior& prior) {
+  const auto [low, high] = prior.support();
+  const RecordModel model(atoms);
+  std::vector<double> v(atoms.grid().samples);
+  model.evaluate(std::vector<double>{std::sqrt(low * high)}, v);
+  double square = 0.0;
+  for (double x : v) square += x * x / static_cast<double>(v.size());
+  return std::sqrt(square);
 }
 
 std::pair<double, double> atom_range(const InverseSetup& setup) {
@@ -96,8 +107,8 @@ CalibrationBank run_calibration(const Study& device_study, const std::string& jo
 
   const auto [s_low, s_high] = prior.support();
   const double band_low = line_frequency_hz(bank.setup.device, s_low), band_high = line_frequency_hz(bank.setup.device, s_high);
-  bank.prior_study_text =
-      prior_study_text(bank.setup.device, prior, prior.calibration_records, prior.seed, band_low, band_high);
+  bank.prior_study_text = prior_study_text(bank.setup.device, prior, prior.calibration_records, prior.seed, band_low,
+                                          band_high, one_asperity_rms_v(atoms, prior));
   const StudyFile prior_study = parse_study_file(bank.prior_study_text, device_study.file + " (calibration prior)", std::nullopt);
 
   std::vector<std::unique_ptr<Worker>> workers(static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));

@@ -33,6 +33,11 @@ InverseSetup inverse_setup(const Study& study, std::optional<RecordGrid> grid = 
 //! 1.25 each way, cut below where an asperity would reach its element's length [N/m].
 std::pair<double, double> atom_range(const InverseSetup& setup);
 
+//! The rms voltage of one sliding asperity of the prior's central stiffness (the geometric
+//! mean of its 1e-4 and 1 - 1e-4 quantiles) over the record [V]: the scale a record of no
+//! sliding asperity takes its noise level from, and the amplitude checks compare with.
+double one_asperity_rms_v(const AtomTable& atoms, const InversePrior& prior);
+
 struct CalibrationBank {
   InverseSetup setup;
   std::string device_study_file, device_study_text;

@@ -109,4 +109,21 @@ void check_device_over_prior(const Study& known, const KnownDevice& device, cons
                           "would");
 }
 
+void check_prior_over_device(const Study& known, const KnownDevice& device, const InversePrior& prior,
+                             const RecordGrid& grid) {
+  const double tau = prior.parameter_tolerance;
+  const auto& f = device.model.friction;
+  if (f.static_coefficient * (1.0 - tau) < f.kinetic_coefficient * (1.0 + tau))
+    fail_at_study_key(known, "inverse.parameter_tolerance",
+                      "= " + format_number(tau) + " lets static_friction (" + format_number(f.static_coefficient) +
+                          ") fall below kinetic_friction (" + format_number(f.kinetic_coefficient) +
+                          "): mu_s (1 - tau) must stay >= mu_k (1 + tau)");
+  const double end_s = grid.at(grid.samples - 1);
+  if (prior.onset_s[1] >= end_s)
+    fail_at_study_key(known, "inverse.onset_s",
+                      "= [" + format_number(prior.onset_s[0]) + ", " + format_number(prior.onset_s[1]) +
+                          "] s reaches the end of the record (t = " + format_number(end_s) +
+                          " s): an asperity that comes into contact after it leaves nothing to find");
+}
+
 }  // namespace stengmc

@@ -41,6 +41,12 @@ Study device_study_at(const Study& known, const KnownDevice& device, std::span<c
 void check_device_over_prior(const Study& known, const KnownDevice& device, const InversePrior& prior,
                              const RecordGrid& grid);
 
+//! Refuses a prior the device cannot take, naming `known` and the [inverse] key:
+//!  - a parameter_tolerance that lets mu_s fall below mu_k (mu_s (1 - tau) < mu_k (1 + tau));
+//!  - contact onsets that reach the end of the record (onset_s's max >= the record's last time).
+void check_prior_over_device(const Study& known, const KnownDevice& device, const InversePrior& prior,
+                             const RecordGrid& grid);
+
 //! Throws InputError for the study key at `dotted_path` ("model.damping_n_s_per_m"), at its
 //! line when the study file itself sets it, else naming the file and the key: "`what`" follows
 //! the key ("= 1 N s/m over-damps ...").

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "pipeline/measurement_noise.hpp"
+#include "surface/load_spread.hpp"
 
 namespace stengmc {
 
@@ -59,9 +60,23 @@ std::string InversePrior::describe() const {
       << k1 << " = [" << first[0] << ", " << first[1] << "]\n"
       << k2 << " = [" << second[0] << ", " << second[1] << "]\n"
       << "snr_db = [" << snr_db[0] << ", " << snr_db[1] << "]\n"
+      << "load_cv = [" << load_cv[0] << ", " << load_cv[1] << "]\n"
+      << "onset_s = [" << onset_s[0] << ", " << onset_s[1] << "]\n"
+      << "parameter_tolerance = " << parameter_tolerance << "\n"
+      << "noise = " << NOISE_COLOUR_NAMES.name(noise) << "\n"
+      << "offset = " << (offset ? "true" : "false") << "\n"
       << "calibration_records = " << calibration_records << "\n"
       << "seed = " << seed << "\n";
   return out.str();
+}
+
+bool InversePrior::ideal_device() const {
+  return load_cv[1] == 0.0 && onset_s[1] == 0.0 && parameter_tolerance == 0.0 && noise == NoiseColour::white && !offset;
+}
+
+double InversePrior::largest_load_ratio(double tail) const {
+  const double spread = load_cv[1] > 0.0 ? LoadSpread(1.0, load_cv[1]).load_quantile(1.0 - tail) : 1.0;
+  return spread * (1.0 + parameter_tolerance);
 }
 
 namespace {
@@ -80,7 +95,9 @@ std::array<double, 2> read_range(TomlTable& t, std::string_view key, std::array<
 InversePrior read_inverse_prior(TomlTable& t) {
   InversePrior p;
   if (t.has("count")) {
-    const std::array<double, 2> c = read_range(t, "count", {1, 16}, true);
+    const std::array<double, 2> c = read_range(t, "count", {1, 16}, false);
+    if (c[0] < 0.0) t.fail("count", "= [" + format_number(c[0]) + ", " + format_number(c[1]) + "] must be >= 0 (0: nothing slides)");
+    if (!(c[1] > 0.0)) t.fail("count", "= [" + format_number(c[0]) + ", " + format_number(c[1]) + "]: the largest count must be > 0");
     if (c[0] != std::floor(c[0]) || c[1] != std::floor(c[1])) t.fail("count", "must hold two whole numbers [min, max]");
     if (c[1] > 64) t.fail("count", "= [" + format_number(c[0]) + ", " + format_number(c[1]) + "]: at most 64 sliding asperities are supported");
     p.count_min = static_cast<std::size_t>(c[0]);
@@ -103,6 +120,20 @@ InversePrior read_inverse_prior(TomlTable& t) {
   if (!(std::abs(p.snr_db[0]) <= MAX_SNR_DB && std::abs(p.snr_db[1]) <= MAX_SNR_DB))
     t.fail("snr_db", "= [" + format_number(p.snr_db[0]) + ", " + format_number(p.snr_db[1]) + "] must lie in [" +
                          format_number(-MAX_SNR_DB) + ", " + format_number(MAX_SNR_DB) + "] dB (as [noise] snr_db)");
+  p.load_cv = read_range(t, "load_cv", p.load_cv, false);
+  if (!(p.load_cv[0] >= 0.0 && p.load_cv[1] <= MAX_LOAD_CV))
+    t.fail("load_cv", "= [" + format_number(p.load_cv[0]) + ", " + format_number(p.load_cv[1]) + "] must lie in [0, " +
+                          format_number(MAX_LOAD_CV) + "] (the loads' coefficient of variation; 0: equal loads)");
+  p.onset_s = read_range(t, "onset_s", p.onset_s, false);
+  if (!(p.onset_s[0] >= 0.0) || !std::isfinite(p.onset_s[1]))
+    t.fail("onset_s", "= [" + format_number(p.onset_s[0]) + ", " + format_number(p.onset_s[1]) +
+                          "] must lie in [0, inf) s (contact onsets after the record starts)");
+  p.parameter_tolerance = t.non_negative("parameter_tolerance", p.parameter_tolerance);
+  if (!(p.parameter_tolerance <= MAX_PARAMETER_TOLERANCE))
+    t.fail("parameter_tolerance", "= " + format_number(p.parameter_tolerance) + " must lie in [0, " +
+                                      format_number(MAX_PARAMETER_TOLERANCE) + "] (relative)");
+  p.noise = t.enumeration("noise", p.noise, NOISE_COLOUR_NAMES);
+  p.offset = t.boolean("offset", p.offset);
   p.calibration_records = static_cast<std::size_t>(t.integer("calibration_records", static_cast<long long>(p.calibration_records), 50));
   if (p.calibration_records > 1'000'000) t.fail("calibration_records", "must be <= 1000000");
   p.seed = static_cast<std::uint64_t>(t.integer("seed", static_cast<long long>(p.seed), 0));

@@ -126,7 +126,10 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);
 
-  const OutputTraces& traces = study.output.traces;
+  // A run of no asperity (a surface of no summits) has no asperity x time traces: an axis of
+  // length 0 against the time axis is no dataset HDF5's dimension scales can describe.
+  const OutputTraces traces = study.asperities.empty() ? OutputTraces{false, false, false, false, false, false}
+                                                       : study.output.traces;
   if (traces.x) file.write("/asperity/x", column(result.trajectories, [](const Trajectory& t) { return t.x_m; }));
   if (traces.v) file.write("/asperity/v", column(result.trajectories, [](const Trajectory& t) { return t.v_m_per_s; }));
   if (traces.friction)
@@ -160,6 +163,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
     file.attribute("/circuit/measured_voltage", "coloured_exponent", study.noise->coloured_exponent);
     file.attribute("/circuit/measured_voltage", "offset_v", study.noise->offset_v);
     file.attribute("/circuit/measured_voltage", "bandwidth_hz", study.noise->bandwidth_hz);
+    file.attribute("/circuit/measured_voltage", "reference_rms_v", study.noise->reference_rms_v);
   }
   file.attribute("/circuit", "input", CIRCUIT_INPUT_NAMES.name(study.circuit_input));
   file.attribute("/circuit", "voltage_rms_v", summary.voltage_rms_v);

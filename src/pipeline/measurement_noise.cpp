@@ -35,6 +35,8 @@ NoisyVoltage measure_voltage(std::span<const double> voltage_v, std::size_t firs
     double power = 0.0;
     for (std::size_t j = first; j < first + count; ++j) power += (voltage_v[j] - mean) * (voltage_v[j] - mean);
     power /= static_cast<double>(count);
+    // Nothing slides: the SNR refers to the reference the study gives (MODEL.md §3.6).
+    if (power == 0.0) power = settings.reference_rms_v * settings.reference_rms_v;
     out.sigma_v = std::sqrt(power / std::pow(10.0, settings.snr_db / 10.0));
   }
   if (out.sigma_v > 0.0) {
@@ -82,6 +84,10 @@ NoiseSettings read_noise_settings(TomlTable& t) {
   s.bandwidth_hz = t.number("bandwidth_hz", 0.0);
   if (!(std::isfinite(s.bandwidth_hz) && s.bandwidth_hz >= 0.0))
     t.fail("bandwidth_hz", "= " + format_number(s.bandwidth_hz) + " must be >= 0 Hz (0: no amplifier bandwidth)");
+  s.reference_rms_v = t.number("reference_rms_v", 0.0);
+  if (!(std::isfinite(s.reference_rms_v) && s.reference_rms_v >= 0.0 && s.reference_rms_v <= 1e6))
+    t.fail("reference_rms_v", "= " + format_number(s.reference_rms_v) +
+                                  " must lie in [0, 1e6] V (the rms the SNR refers to when nothing slides; 0: no noise then)");
   return s;
 }
 

@@ -27,6 +27,9 @@ struct NoiseSettings {
   double offset_v = 0.0;
   //! The amplifier's first-order bandwidth (-3 dB) [Hz]; 0: none (flat).
   double bandwidth_hz = 0.0;
+  //! The rms voltage the SNR refers to when the clean signal has no power (nothing slides):
+  //! sigma^2 = reference_rms_v^2 / 10^(snr/10) [V]; 0: such a record gets no noise.
+  double reference_rms_v = 0.0;
 };
 
 NoiseSettings read_noise_settings(TomlTable& table);
@@ -39,10 +42,11 @@ struct NoisyVoltage {
 //! The measured voltage: V_m = H[V + n_white + n_coloured] + offset, H the amplifier's
 //! first-order low-pass (exact for an input linear between samples) when bandwidth_hz > 0.
 //! sigma^2 = P / 10^(snr_db/10), P the mean square of the mean-removed V over samples
-//! [first, first + count): white noise of variance (1 - share) sigma^2, one Boost normal
+//! [first, first + count) (reference_rms_v^2 when that is 0): white noise of variance (1 - share) sigma^2, one Boost normal
 //! draw per sample, in order, from `white`; coloured noise (spectral/power_law_noise.hpp) of
 //! variance share sigma^2 over the same samples, drawn from `coloured`. A voltage without
-//! power there gets no noise (an SNR of nothing is undefined), but its offset and filter.
+//! power there and no reference_rms_v gets no noise (an SNR of nothing is undefined), but
+//! its offset and filter.
 NoisyVoltage measure_voltage(std::span<const double> voltage_v, std::size_t first, std::size_t count,
                              double sample_rate_hz, const NoiseSettings& settings, RandomEngine& white,
                              RandomEngine& coloured);

@@ -269,7 +269,11 @@ RunResult run_study(const Study& study, const RunOptions& options) {
                    [](const Event& a, const Event& b) { return a.time_s < b.time_s; });
 
   const auto circuit_start = Clock::now();
-  if (study.netlist) {
+  if (n == 0) {
+    // Nothing slides (a surface of no summits): no source drives the load, V = Q = 0.
+    result.circuit.voltage_v.assign(result.circuit_samples, 0.0);
+    result.circuit.charge_c.assign(result.circuit_samples, 0.0);
+  } else if (study.netlist) {
     std::vector<const Motion*> inputs;
     std::vector<StengElement> elements;
     for (std::size_t i = 0; i < n; ++i) {

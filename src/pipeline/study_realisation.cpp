@@ -22,7 +22,11 @@ void draw_population(Study& study) {
   const auto& contact = study.population.contact;
   if (contact && !contact->load_carried)
     throw ModelError(which + " drew no summits (" + seed + "): no separation can carry the nominal load W; nothing to simulate");
-  if (study.asperities.empty())
+  // A fixed count of 0 summits asks for a record with nothing sliding (the measurement
+  // chain alone); any other empty population is a realisation with nothing to simulate.
+  const RandomSurface* random = study.surface->random_surface();
+  const bool none_asked = random && random->count_rule == CountRule::fixed && random->summit_count == 0;
+  if (study.asperities.empty() && !none_asked)
     throw ModelError(which + " has no asperity in contact (" + std::to_string(study.population.height_m.size()) +
                      " summits drawn, " + seed + "): nothing to simulate");
 }

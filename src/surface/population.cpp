@@ -35,7 +35,19 @@ void draw_heights_and_stiffnesses(const RandomSurface& s, std::uint64_t seed, st
           s.correlation->sample(s.heights, *s.stiffness, heights, stiffnesses);
     return;
   }
-  for (double& z : p.height_m) z = s.heights.sample(heights);
+  if (s.load_rule == LoadRule::spread) {
+    // Greenwood–Williamson: the summits in contact, drawn above the separation, with their
+    // loads (one uniform draw each from the heights stream).
+    const double mean = s.heights.mean(), std = std::sqrt(s.heights.variance());
+    p.load_n.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const LoadedSummit summit = s.load_spread->draw(heights);
+      p.height_m[i] = mean + std * summit.height_score;
+      p.load_n[i] = summit.load_n;
+    }
+  } else {
+    for (double& z : p.height_m) z = s.heights.sample(heights);
+  }
   if (s.stiffness_rule == StiffnessRule::sampled) {
     p.sampled_stiffness_n_per_m.resize(n);
     for (double& k : p.sampled_stiffness_n_per_m) k = s.stiffness->sample(stiffnesses);
@@ -86,10 +98,25 @@ HertzContact fixed_load_contact(std::size_t n, double load_n, double summit_radi
   return c;
 }
 
+//! Hertz contact of each summit under its own drawn load: a_i = (3 N_i R_s / 4 E*)^(1/3).
+HertzContact drawn_load_contact(const std::vector<double>& loads_n, double summit_radius_m, double e_star) {
+  HertzContact c;
+  for (double load : loads_n) {
+    const double a = std::cbrt(3.0 * load * summit_radius_m / (4.0 * e_star));
+    c.load_n.push_back(load);
+    c.patch_radius_m.push_back(a);
+    c.interference_m.push_back(a * a / summit_radius_m);
+    c.total_load_n += load;
+    c.real_area_m2 += PI * a * a;
+  }
+  c.contact_count = loads_n.size();
+  return c;
+}
+
 void solve_contact(const RandomSurface& s, Population& p) {
   const std::size_t n = p.height_m.size();
-  if (!s.materials) {  // the paper's picture: a fixed load, nothing known about the patches
-    p.load_n.assign(n, s.normal_load_n);
+  if (!s.materials) {  // a fixed load (the paper) or a drawn spread, nothing known about the patches
+    if (s.load_rule != LoadRule::spread) p.load_n.assign(n, s.normal_load_n);
     return;
   }
   const ContactMaterials& m = *s.materials;
@@ -100,6 +127,12 @@ void solve_contact(const RandomSurface& s, Population& p) {
   bool have_interaction = false;
   if (s.load_rule == LoadRule::fixed) {
     hertz = fixed_load_contact(n, s.normal_load_n, m.summit_radius_m, e_star);
+  } else if (s.load_rule == LoadRule::spread) {
+    hertz = drawn_load_contact(p.load_n, m.summit_radius_m, e_star);
+    const double std = std::sqrt(s.heights.variance());
+    // cv = 0 has no separation (every summit pressed alike): 0, as under a fixed load.
+    const double separation = s.load_spread->separation();
+    hertz.separation_m = std::isfinite(separation) ? s.heights.mean() + std * separation : 0.0;
   } else if (n == 0) {
     c.hertz_load = true;
     c.load_carried = false;

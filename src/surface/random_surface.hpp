@@ -13,6 +13,7 @@
 #include "surface/copula.hpp"
 #include "surface/distribution.hpp"
 #include "surface/interaction.hpp"
+#include "surface/load_spread.hpp"
 #include "surface/materials.hpp"
 
 namespace stengmc {
@@ -31,6 +32,7 @@ enum class PositionRule {
 enum class LoadRule {
   fixed,  //!< every summit carries `normal_load_n` (the paper)
   hertz,  //!< a rigid flat at separation d, solved so the Hertz loads sum to W
+  spread, //!< Greenwood–Williamson loads of a given mean and CV (load_spread.hpp)
 };
 //! Where each asperity's shear stiffness comes from.
 enum class StiffnessRule {
@@ -88,6 +90,9 @@ struct RandomSurface {
   LoadRule load_rule = LoadRule::fixed;
   double normal_load_n = 1e-3;              //!< fixed: N per asperity [N]
   double nominal_load_n = 0.0;              //!< hertz: W on the nominal area [N]
+  //! spread: the load law (mean N̄ = `mean_load_n`, CV = `load_cv`); the summits are those in
+  //! contact, their heights drawn from the normal [heights] law above the separation
+  std::optional<LoadSpread> load_spread;
 
   InteractionMode interaction_mode = InteractionMode::report;
   InteractionSettings interaction;

@@ -66,7 +66,9 @@ void read_summits(TomlTable& root, RandomSurface& s) {
     s.summit_density_per_m2 = t.positive("density_per_m2", 0.0);
   } else {
     if (!t.has("count")) t.fail("count", "is missing: count_rule = \"fixed\" needs the number of summits");
-    s.summit_count = static_cast<std::size_t>(t.integer("count", 0, 1));
+    // 0 is a surface with nothing in contact: its runs give V = 0, a record of the
+    // measurement chain alone (MODEL.md §4.1).
+    s.summit_count = static_cast<std::size_t>(t.integer("count", 0, 0));
   }
   if (s.mean_summit_count() > MAX_MEAN_SUMMITS)
     t.fail(s.count_rule == CountRule::poisson ? "density_per_m2" : "count",
@@ -124,12 +126,35 @@ void read_stiffness(TomlTable& root, RandomSurface& s, const std::filesystem::pa
 }
 
 void read_load(TomlTable& root, RandomSurface& s) {
-  TomlTable t = required_table(root, "load", "a [load] table with rule = \"fixed\" (normal_load_n) or \"hertz\" (nominal_load_n)");
-  const std::string rule = t.choice("rule", "fixed", {"fixed", "hertz"});
+  TomlTable t = required_table(root, "load", "a [load] table with rule = \"fixed\" (normal_load_n), \"hertz\" (nominal_load_n) "
+                                             "or \"spread\" (mean_load_n, load_cv)");
+  const std::string rule = t.choice("rule", "fixed", {"fixed", "hertz", "spread"});
   if (rule == "fixed") {
     s.load_rule = LoadRule::fixed;
     if (t.has("nominal_load_n")) t.fail("nominal_load_n", "is used by rule = \"hertz\" only; rule = \"fixed\" takes normal_load_n");
     s.normal_load_n = t.positive("normal_load_n", s.normal_load_n);
+    return;
+  }
+  if (rule == "spread") {
+    s.load_rule = LoadRule::spread;
+    for (const char* key : {"normal_load_n", "nominal_load_n"})
+      if (t.has(key)) t.fail(key, "is not used by rule = \"spread\", which takes mean_load_n and load_cv");
+    if (!t.has("mean_load_n")) t.fail("mean_load_n", "is missing: rule = \"spread\" needs the loads' mean [N]");
+    const double mean = t.positive("mean_load_n", 0.0);
+    if (!std::isfinite(mean)) t.fail("mean_load_n", "must be finite");
+    const double cv = t.non_negative("load_cv", 0.0);
+    if (!(cv <= MAX_LOAD_CV))
+      t.fail("load_cv", "= " + format_number(cv) + " must lie in [0, " + format_number(MAX_LOAD_CV) +
+                            "] (Greenwood–Williamson loads reach at most 1.55 as the separation rises)");
+    // Greenwood–Williamson: the loads follow from Gaussian heights above the separation.
+    const Distribution& h = s.heights;
+    if (!h.family() || h.family()->name != "normal" || h.truncated())
+      t.fail("rule", "= \"spread\" draws the summits in contact from Gaussian heights: give [heights] kind = \"normal\" "
+                     "(mean, std) without min or max");
+    if (s.correlation)
+      t.fail("rule", "= \"spread\" draws the heights conditioned on contact, which a [correlation] copula with the "
+                     "stiffness cannot follow: leave out [correlation]");
+    s.load_spread.emplace(mean, cv);
     return;
   }
   s.load_rule = LoadRule::hertz;

@@ -371,8 +371,8 @@ TEST(EnsembleCommand, BadEnsembleInputNamesTheKeyOrTheGridPoint) {
        {"study.toml:", "[ensemble] target_statistic", "voltage_rms_v"}},
       {"sweep of a missing table", "[[ensemble.sweep]]\nparameter = \"model.belt.velocity\"\nvalues = [1]\n",
        {"grid point 1 of 1", "model.belt.velocity", "no table [model.belt]"}},
-      {"swept value the study refuses", "[[ensemble.sweep]]\nparameter = \"surface.summits.count\"\nvalues = [2, 0]\n",
-       {"grid point 2 of 2", "surface.summits.count = 0", "count", ">= 1"}},
+      {"swept value the study refuses", "[[ensemble.sweep]]\nparameter = \"surface.summits.count\"\nvalues = [2, -1]\n",
+       {"grid point 2 of 2", "surface.summits.count = -1", "count", ">= 0"}},
       {"sweeping the seed", "[[ensemble.sweep]]\nparameter = \"seed\"\nvalues = [1, 2]\n", {"seed", "cannot be swept"}},
   };
   for (const Case& c : cases) {

@@ -129,12 +129,34 @@ TEST(MeasureVoltage, TheNoisePowerIsWhatTheSnrSaysWhateverItsColourAndTheOffsetI
   }
 }
 
+TEST(MeasureVoltage, ARecordWithNothingSlidingTakesItsNoiseLevelFromTheReference) {
+  // V = 0 has no power to refer an SNR to: sigma = reference_rms_v / 10^(snr/20) exactly,
+  // and without a reference no noise at all (only the offset).
+  const std::vector<double> silent(4000, 0.0);
+  RandomEngine white = random_stream(3, 1, StreamKind::noise), coloured = random_stream(3, 1, StreamKind::noise, 1);
+  const NoiseSettings with_reference{.snr_db = 20.0, .coloured_share = 0.5, .offset_v = 0.1, .reference_rms_v = 2e-3};
+  const NoisyVoltage noisy = measure_voltage(silent, 0, silent.size(), 1e8, with_reference, white, coloured);
+  EXPECT_NEAR(noisy.sigma_v, 2e-4, 1e-18);
+  double mean = 0.0, variance = 0.0;
+  for (double v : noisy.voltage_v) mean += v / 4000.0;
+  for (double v : noisy.voltage_v) variance += (v - mean) * (v - mean) / 4000.0;
+  // The white half's sample variance is within 3 sd (sqrt(2/N) = 2.2 %) of its own, the
+  // coloured half's exact: 7 % of the total covers both.
+  EXPECT_NEAR(variance / (2e-4 * 2e-4), 1.0, 0.07);
+  EXPECT_NEAR(mean, 0.1, 0.1 * 2e-4);
+  const NoisyVoltage bare = measure_voltage(silent, 0, silent.size(), 1e8, NoiseSettings{.snr_db = 20.0, .offset_v = 0.1},
+                                            white, coloured);
+  EXPECT_EQ(bare.sigma_v, 0.0);
+  for (double v : bare.voltage_v) ASSERT_EQ(v, 0.1);
+}
+
 TEST(NoiseSettings, EachKeyOutsideItsRangeIsRefusedNamingIt) {
   const std::vector<std::pair<std::string, std::string>> bad{
       {"coloured_share = 1.5", "coloured_share"}, {"coloured_share = -0.1", "coloured_share"},
       {"coloured_exponent = 3", "coloured_exponent"}, {"coloured_exponent = 0.1", "coloured_exponent"},
       {"offset_v = nan", "offset_v"}, {"offset_v = 1e300", "offset_v"}, {"bandwidth_hz = -1", "bandwidth_hz"},
-      {"bandwidth_hz = inf", "bandwidth_hz"}};
+      {"bandwidth_hz = inf", "bandwidth_hz"}, {"reference_rms_v = -1", "reference_rms_v"},
+      {"reference_rms_v = nan", "reference_rms_v"}};
   for (const auto& [line, key] : bad) {
     auto document = TomlDocument::from_string("[noise]\nsnr_db = 20\n" + line + "\n", "s.toml");
     auto noise = document->root().table("noise");

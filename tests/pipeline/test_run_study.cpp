@@ -49,6 +49,46 @@ TEST(RunStudy, FlagPolicyCutsTheCircuitAtTheFirstExitAndMarksTheRunInvalid) {
   EXPECT_EQ(result.trajectories[1].x_m.size(), result.times_s.size());
 }
 
+TEST(RunStudy, ASurfaceOfNoSummitsRecordsTheMeasurementChainAlone) {
+  // A fixed count of 0 (MODEL.md §4.1): nothing slides, V = Q = 0 exactly, and the measured
+  // voltage is the chain's noise at the level its reference gives (sigma = 1e-3 / 10).
+  const Study study = parse_study(R"(duration_s = 10e-6
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+[surface]
+kind = "random"
+nominal_area_m2 = 1e-6
+[surface.summits]
+count_rule = "fixed"
+count = 0
+[surface.heights]
+kind = "fixed"
+values = [110e-6]
+[surface.stiffness]
+kind = "uniform"
+min = 10
+max = 155
+[surface.load]
+rule = "fixed"
+[noise]
+snr_db = 20
+reference_rms_v = 1e-3
+[spectrum]
+)", "empty.toml");
+  const RunResult result = run_study(study);
+  EXPECT_TRUE(result.valid);
+  EXPECT_TRUE(study.asperities.empty());
+  ASSERT_EQ(result.circuit.voltage_v.size(), result.times_s.size());
+  for (std::size_t j = 0; j < result.times_s.size(); ++j) {
+    ASSERT_EQ(result.circuit.voltage_v[j], 0.0);
+    ASSERT_EQ(result.circuit.charge_c[j], 0.0);
+  }
+  EXPECT_NEAR(result.noise_sigma_v, 1e-4, 1e-18);
+  ASSERT_EQ(result.measured_voltage_v.size(), result.times_s.size());
+}
+
 TEST(RunStudy, ImposedInputGivesTheQuasiStaticVoltageOfTheDrive) {
   // Fig. 3c: the element driven by x0 = A sin(omega t). With a small load the voltage is
   // quasi-static, V = R sigma w x0' (MODEL.md §2), here R sigma w A omega cos(omega t);

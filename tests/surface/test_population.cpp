@@ -22,6 +22,7 @@
 #include "core/error.hpp"
 #include "core/toml_reader.hpp"
 #include "surface/hertz_contact.hpp"
+#include "surface/load_spread.hpp"
 #include "surface/materials.hpp"
 #include "surface/population.hpp"
 #include "surface/random_surface.hpp"
@@ -326,6 +327,74 @@ TEST(PopulationSampling, OnsetsFollowTheirLawFromAStreamOfTheirOwn) {
   EXPECT_THROW(read_surface(LIGHT + "[onset]\nkind = \"normal\"\nmean = 5e-6\nstd = 1e-6\n"), InputError);
 }
 
+
+TEST(PopulationContact, LoadSpreadGivesEverySummitALoadFromItsHeight) {
+  // [load] rule = "spread" (MODEL.md §4.4): every summit is in contact and an asperity, its
+  // height above the separation d = mean + std δ, and its load follows from its height by
+  // the Greenwood–Williamson law N = N̄ ((z − d)/std)^{3/2} / M_{3/2}(δ) (written out here
+  // from load_spread.hpp's functions; z carries ~5e-15 of a std in rounding, so the
+  // load agrees to 1e-12 plus 1.5 x that over the excess). Hertz patches with materials.
+  const std::string body = R"(
+nominal_area_m2 = 1e-6
+[summits]
+count_rule = "fixed"
+count = 40
+[heights]
+kind = "normal"
+mean = 110e-6
+std = 2e-6
+[stiffness]
+kind = "uniform"
+min = 10
+max = 155
+[load]
+rule = "spread"
+mean_load_n = 1e-3
+load_cv = 0.5
+)";
+  const RandomSurface s = read_surface(body + MATERIALS);
+  const double delta = separation_for_load_cv(0.5), m = excess_height_moment(1.5, delta);
+  for (std::uint64_t r = 0; r < 5; ++r) {
+    const Population p = sample_population(s, SEED, r);
+    ASSERT_EQ(p.asperities.size(), 40u);
+    ASSERT_TRUE(p.contact);
+    EXPECT_NEAR(p.contact->separation_m, 110e-6 + 2e-6 * delta, 1e-18);
+    for (std::size_t i = 0; i < 40; ++i) {
+      const double excess = (p.height_m[i] - 110e-6) / 2e-6 - delta;
+      ASSERT_GT(excess, 0.0);
+      EXPECT_NEAR(p.asperities[i].normal_load_n / (1e-3 * std::pow(excess, 1.5) / m), 1.0, 1e-12 + 1e-14 / excess);
+      const double a = std::cbrt(3.0 * p.load_n[i] * R_S / (4.0 * e_star_by_hand()));
+      EXPECT_NEAR(p.contact->patch_radius_m[i] / a, 1.0, 1e-12);
+    }
+  }
+  // Without materials the same loads are drawn (same heights stream), no patches.
+  const Population bare = sample_population(read_surface(body), SEED, 0), full = sample_population(s, SEED, 0);
+  EXPECT_FALSE(bare.contact);
+  EXPECT_TRUE(same_bits(bare.load_n, full.load_n));
+}
+
+TEST(PopulationSampling, AFixedCountOfNoSummitsIsAnEmptyPopulation) {
+  const Population p = sample_population(read_surface(R"(
+nominal_area_m2 = 1e-6
+[summits]
+count_rule = "fixed"
+count = 0
+[heights]
+kind = "normal"
+mean = 110e-6
+std = 2e-6
+[stiffness]
+kind = "uniform"
+min = 10
+max = 155
+[load]
+rule = "spread"
+mean_load_n = 1e-3
+load_cv = 0.5
+)"), SEED, 0);
+  EXPECT_TRUE(p.asperities.empty());
+  EXPECT_TRUE(p.height_m.empty());
+}
 
 TEST(PopulationSampling, PoissonCountHasPoissonMeanAndVariance) {
   // Closed form: count ~ Poisson(lambda), lambda = density x A0 = 20, so E = Var = lambda.

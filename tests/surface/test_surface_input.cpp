@@ -158,6 +158,24 @@ TEST(SurfaceInput, HertzLoadMustBePositive) {
   }
 }
 
+TEST(SurfaceInput, LoadSpreadNeedsGaussianHeightsAndACvInRange) {
+  const std::string normal = "[heights]\nkind = \"normal\"\nmean = 110e-6\nstd = 1e-6\n";
+  const std::string spread = "[load]\nrule = \"spread\"\nmean_load_n = 1e-3\nload_cv = 0.4\n";
+  EXPECT_EQ(error_of(HEAD + normal + STIFFNESS + spread), "(no error)");
+  expect_rejected(HEAD + HEIGHTS + STIFFNESS + spread, "rule = \"spread\"",
+                  {"[load] rule", "Gaussian heights", "kind = \"normal\""});
+  expect_rejected(HEAD + "[heights]\nkind = \"normal\"\nmean = 110e-6\nstd = 1e-6\nmin = 0\n" + STIFFNESS + spread,
+                  "rule = \"spread\"", {"without min or max"});
+  expect_rejected(HEAD + normal + STIFFNESS + "[correlation]\nrho = 0.5\n" + spread, "rule = \"spread\"",
+                  {"[correlation]"});
+  expect_rejected(HEAD + normal + STIFFNESS + "[load]\nrule = \"spread\"\nmean_load_n = 1e-3\nload_cv = 1.5\n",
+                  "load_cv = 1.5", {"[load] load_cv", "must lie in [0, 1.4]"});
+  expect_rejected(HEAD + normal + STIFFNESS + "[load]\nrule = \"spread\"\nload_cv = 0.2\n", "[load]",
+                  {"mean_load_n", "is missing"});
+  expect_rejected(HEAD + normal + STIFFNESS + "[load]\nrule = \"spread\"\nmean_load_n = 1e-3\nnormal_load_n = 1e-3\n",
+                  "normal_load_n = 1e-3", {"[load] normal_load_n", "mean_load_n and load_cv"});
+}
+
 TEST(SurfaceInput, MindlinStiffnessNeedsMaterials) {
   expect_rejected(HEAD + HEIGHTS + "[stiffness]\nrule = \"mindlin\"\n" + FIXED_LOAD, "rule = \"mindlin\"",
                   {"[stiffness] rule", "= \"mindlin\" needs a [materials] table"});
