@@ -209,6 +209,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
       // Only what is left: counting resumed realisations as done now would make the ETA
       // optimistic.
       progress.emplace(options.progress_label, to_run - done.size());
+      if (options.job_start) progress->set_job_share(*options.job_start, options.job_before, options.job_share);
     }
     // Without a target, one batch of everything balances the threads best.
     const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;
