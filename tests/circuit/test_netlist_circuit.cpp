@@ -263,16 +263,39 @@ TEST(NetlistCircuit, ExportedNetlistRunsInNgspiceAsTheBuiltInSolverOnItsPwlInput
   const RunResult run = run_study(study, quiet());
   const std::filesystem::path directory =
       test::make_unique_directory(std::filesystem::temp_directory_path(), "stengmc_export_");
+  const std::string exported = export_netlist_text(study, run);
   {
     std::ofstream out(directory / "export.cir");
-    out << export_netlist_text(study, run);
+    out << exported;
   }
+  // Knot times as a person writes them (3e-08, not 3.0000000000000004e-08), and a .save, so
+  // the raw file holds the port and not every node of every element.
+  EXPECT_NE(exported.find(" 3e-08 "), std::string::npos);
+  {  // every knot time of the first element: at most 6 significant digits (j / 100 MHz, j < 200)
+    const std::size_t from = exported.find("PWL(") + 4, to = exported.find(")", from);
+    std::string block = exported.substr(from, to - from);
+    std::replace(block.begin(), block.end(), '+', ' ');  // continuation marks (no exponent here has a '+')
+    std::istringstream knots(block);
+    std::string time, x;
+    std::size_t count = 0;
+    while (knots >> time >> x) {
+      const std::string mantissa = time.substr(0, time.find('e'));
+      std::size_t digits = 0;
+      for (char c : mantissa) digits += std::isdigit(static_cast<unsigned char>(c)) ? 1 : 0;
+      EXPECT_LE(digits, 6u) << time;
+      ++count;
+    }
+    EXPECT_EQ(count, run.times_s.size());
+  }
+  EXPECT_NE(exported.find(".save v(steng) i(vstengmc_port)"), std::string::npos);
   const std::string command = "cd '" + directory.string() + "' && '" + ngspice->string() +
                               "' -b -r export.raw export.cir > ngspice.log 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << read_text((directory / "ngspice.log").string());
   const test::RawFile raw = test::RawFile::read_binary(directory / "export.raw");
   const std::vector<double>& t = raw.column("time");
   ASSERT_NEAR(t.back(), run.times_s.back(), 1e-9 * run.times_s.back()) << "the transient stopped early";
+  EXPECT_LT(std::filesystem::file_size(directory / "export.raw"), (t.size() + 1) * 4 * sizeof(double))
+      << "more than time and the two saved vectors";
 
   // The reference: the built-in solver on exactly what the netlist holds, the samples
   // joined linearly (a PWL source; MODEL.md §2).
