@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Energy harvested per second through the bridge rectifier against the asperity count.
 
-    rectifier_harvest.py [--binary build/src/stengmc] [--counts 1 2 4 8] [--out results/circuits/harvest]
+    rectifier_harvest.py [--binary build/src/stengmc] [--counts 1 2 4 8 16] [--out results/circuits/harvest]
 
 For each count n, a study like studies/circuits/bridge_rectifier.toml (Model 2, v_b = 10 m/s,
 20 us at 100 MHz) whose surface is n asperities cycling through the paper's stiffnesses 25,
@@ -61,7 +61,7 @@ def harvested_power_w(run_file):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", default=os.path.join(SOURCE_DIR, "build", "src", "stengmc"))
-    parser.add_argument("--counts", type=int, nargs="+", default=[1, 2, 4, 8])
+    parser.add_argument("--counts", type=int, nargs="+", default=[1, 2, 4, 8, 16])
     parser.add_argument("--out", default=os.path.join("results", "circuits", "harvest"))
     args = parser.parse_args()
     os.makedirs(os.path.dirname(args.out) or ".", exist_ok=True)

@@ -135,7 +135,7 @@ void add_calibrate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Bank file (default results/<study>_bank.h5)")
       ->check(non_empty_path());
-  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, MAX_THREADS));
+  command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   command->add_flag("--restart", options->restart, "Discard an interrupted calibration's journal instead of resuming it");
   command->add_option("--records", options->records, "Simulated records (default: [inverse] calibration_records)")
       ->check(CLI::Range(50LL, 1000000LL));

@@ -227,7 +227,7 @@ void add_invert_command(CLI::App& app) {
       ->required()
       ->check(non_empty_path());
   command->add_flag("-f,--figures", options->figures, "Also render the PNG figure (spectrum with the fitted lines, P(n), stiffness law)");
-  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, MAX_THREADS));
+  command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }

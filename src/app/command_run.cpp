@@ -9,6 +9,7 @@
 #include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "ensemble/process_world.hpp"
 #include "ensemble/shard.hpp"
+#include "inverse/inverse_prior.hpp"
 #include "io/run_file.hpp"
 #include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
@@ -60,6 +61,9 @@ void run(const RunOptions& options) {
   const std::optional<ShardSpec> shard =
       options.shard.empty() ? std::nullopt : std::optional<ShardSpec>(parse_shard_spec(options.shard));
   const StudyFile base = read_study_file(options.study_file, std::nullopt);
+  // [inverse] plays no part in a run, but a misspelt key there must not pass unseen: the
+  // same study goes to calibrate and invert, which would refuse it only then.
+  (void)inverse_prior_of_study(base.text, base.file);
   if (base.ensemble && !options.realisation_given) {
     EnsembleCommandOptions ensemble = options.ensemble;
     ensemble.limits = options.limits.limits();
@@ -100,7 +104,7 @@ void add_run_command(CLI::App& app) {
       "study; default 0, and an ensemble study without it runs the ensemble)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
-  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (0: OMP_NUM_THREADS or every core)")
+  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (default 0: OMP_NUM_THREADS when set, else every core)")
       ->capture_default_str()
       ->check(CLI::Range(0, MAX_THREADS));
   command->add_option("--only", options->ensemble.only,

@@ -2,6 +2,7 @@
 //! The Monte Carlo runner: realisations of a study in parallel (OpenMP), each a unit of
 //! work computable from the study and its id alone, kept in a crash-safe journal so a
 //! killed run resumes where it stopped (docs/ensembles.md).
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -30,6 +31,10 @@ struct EnsembleOptions {
   //! Run only this slice of the realisations (and keep only its records from a journal);
   //! not with a target (a slice cannot see when the whole would have stopped).
   std::optional<ShardSpec> shard{};
+  //! Part of a longer job (a sweep): when it started, and the job's fraction this run covers,
+  //! [job_before, job_before + job_share]: the progress then gives the whole job's ETA too.
+  std::optional<std::chrono::steady_clock::time_point> job_start{};
+  double job_before = 0.0, job_share = 1.0;
 };
 
 //! A caller's own reduction of every realisation, run in the worker thread as each record

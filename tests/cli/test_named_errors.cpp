@@ -224,5 +224,27 @@ TEST(NamedErrors, ValuesTheFuzzerFoundHangingAreRefusedAtTheirKey) {
   }
 }
 
+//! `[inverse]` is read by calibrate and invert, but a study with it is also run: a misspelt
+//! key there must be refused by `run` as well, at its line, not pass with exit 0.
+TEST(NamedErrors, AMisspeltInverseKeyIsRefusedByRunToo) {
+  ScratchDir scratch("inverse-key");
+  const std::string text = "duration_s = 2e-6\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\n"
+                           "[surface]\n[[surface.asperity]]\nstiffness_n_per_m = 75\n[inverse]\ncuont = [1, 4]\n";
+  const auto r = run_cli("run " + scratch.write("study.toml", text) + " -o " + scratch.file("out.h5"), scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("study.toml:9"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cuont"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+}
+
+//! Bare `stengmc` is a question, not a usage error: the help, exit 0 (README, "Commands").
+TEST(NamedErrors, BareCommandPrintsTheHelp) {
+  ScratchDir scratch("bare");
+  const auto r = run_cli("", scratch);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Subcommands:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("calibrate"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace stengmc
