@@ -93,7 +93,12 @@ std::string export_netlist_text(const Study& study, const RunResult& result) {
   // element at every step (35 MB for the paper's four asperities over 100 us).
   out << "* The raw file keeps the port voltage and the current the elements deliver; add names\n"
       << "* here for more (the element i's current into the load: i(v.xstengmc_<i>.vc))\n"
-      << ".save v(" << STENG_PORT_NODE << ") i(vstengmc_port)\n";
+      << ".save v(" << STENG_PORT_NODE << ") i(vstengmc_port)";
+  for (const NetlistProbe& probe : study.probes) {  // the study's [circuit] probes too
+    const std::size_t branch = probe.vector.find("#branch");
+    out << " " << (branch == std::string::npos ? probe.vector : "i(" + probe.vector.substr(0, branch) + ")");
+  }
+  out << "\n";
   for (const std::string& card : transient_cards(settings)) out << card << "\n";
   out << ".end\n";
   return out.str();
