@@ -118,6 +118,10 @@ def run_figure(f, path):
             ax.set_ylabel(f"i_i [{a_unit}]")
         if panel in ("x", "friction", "current") and panel not in quiet:
             colours.colour_bar(fig, ax)
+        if panel in ("voltage", "charge", "current") and tc.size < t.size and panel not in quiet:
+            # An invalid run: say where the circuit stops rather than leave the rest blank.
+            ax.text(0.6, 0.5, f"circuit cut at t = {tc[-1]:.3g} {t_unit}: x reached l", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=9, color="red")
         mark_domain_exits(ax, f, t_factor)
     # One legend, beside the top panel: the same colours hold in every panel.
     axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
