@@ -122,6 +122,8 @@ def main():
     if args.compare:
         if not args.out:
             parser.error("--compare needs --out")
+        if os.path.splitext(args.out)[1] != "." + args.figure_format:
+            parser.error(f"--out {args.out} does not end in .{args.figure_format} (--figure-format)")
         plot_compare(args.files, args.out)
         return
     for path in args.files:

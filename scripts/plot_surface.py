@@ -234,7 +234,7 @@ def panel_positions(fig, ax, f, d):
     # Equal loads (a discrete height law, a fixed load) need no colour scale.
     equal = n_contact > 0 and np.ptp(load[contact]) <= 1e-9 * np.max(np.abs(load[contact]))
     if n_contact and radius.size and np.any(radius[contact] > 0):
-        # Real patches are a few um on a square of hundreds: enlarge them by a round factor
+        # Real patches are a few µm on a square of hundreds: enlarge them by a round factor
         # until the median patch spans ~0.6 % of the side, and say so.
         factor = nice_factor(0.006 * side / np.median(radius[contact]))
         circles = [Circle((cx, cy), r * factor) for cx, cy, r in zip(x[contact], y[contact], radius[contact])]
