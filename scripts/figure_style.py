@@ -11,6 +11,7 @@ Debian's python3-matplotlib and numpy."""
 import re
 
 import matplotlib
+import matplotlib.ticker
 import numpy as np
 
 # (factor from SI, label) per SI unit. Fixed, not chosen per figure, so that two figures of
@@ -114,6 +115,16 @@ class StiffnessColours:
     def legend_proxy(self, ax, label, **style):
         """A neutral legend entry for lines drawn in the asperities' colours (`style`: ls, lw)."""
         ax.plot([], [], color="0.35", label=label + (" (colour: k)" if self.scaled else ""), **style)
+
+
+def log_axis(ax, axis="y"):
+    """Log scale labelled at 1, 2, 3, 5 × 10^k in plain numbers: the data span one or two
+    decades, where a lone "10²" tick says nothing."""
+    (ax.set_yscale if axis == "y" else ax.set_xscale)("log")
+    which = ax.yaxis if axis == "y" else ax.xaxis
+    which.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 3.0, 5.0)))
+    which.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    which.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
 def phase_text(phi):

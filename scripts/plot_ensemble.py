@@ -32,12 +32,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figure_style import unit as fixed_unit  # noqa: E402
+from figure_style import log_axis, unit as fixed_unit  # noqa: E402
 from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figure, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
-from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter, NullLocator  # noqa: E402
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
 FILE_TYPE = "stengmc-ensemble"
 US = fixed_unit("s")[0]  # s -> µs
@@ -213,15 +213,6 @@ class Ensemble:
         if self.title:
             lines.append(self.title)
         return "\n".join(w for line in lines for w in textwrap.wrap(line, 130))
-
-
-def log_axis(ax, axis="y"):
-    """Log scale labelled at 1, 2, 3, 5 × 10^k in plain numbers (the data span one or two decades)."""
-    (ax.set_yscale if axis == "y" else ax.set_xscale)("log")
-    which = ax.yaxis if axis == "y" else ax.xaxis
-    which.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 3.0, 5.0)))
-    which.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    which.set_minor_formatter(NullFormatter())
 
 
 def wants_log(values):

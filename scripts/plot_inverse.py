@@ -27,6 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
+from figure_style import log_axis  # noqa: E402
 from stengmc_h5 import add_output_options, attribute, figure_path, save_figure, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 
@@ -139,7 +140,7 @@ def inverse_figure(path, record=0):
     for i in range(len(k)):
         ax.plot([k_low[i], k_high[i]], [0.03 * top] * 2, color="C3", lw=3, alpha=0.5)
         ax.plot([k[i]], [0.03 * top], "|", color="C3", ms=12)
-    ax.set_xscale("log")
+    log_axis(ax, "x")
     ax.set_xlabel("stiffness k [N/m]")
     ax.set_ylabel("probability density [m/N]")
     med = f["inverse/stiffness/median"][record]
