@@ -71,6 +71,15 @@ def parameter_label(parameter):
     return name
 
 
+def parameter_value(parameter, value):
+    """belt_velocity_m_per_s, 10 -> "belt_velocity = 10 m/s": the unit after the number."""
+    name = short(parameter)
+    for suffix, unit_text in PARAMETER_UNITS:
+        if name.endswith(suffix) and suffix != "count":
+            return f"{name[: -len(suffix)]} = {value:g} {unit_text}"
+    return f"{name} = {value:g}"
+
+
 def si_scale(values, si_unit):
     """(factor, label) of the quantity's unit: fixed per quantity across all stengmc figures
     (figure_style.UNITS: V in mV, Q in fC), so an ensemble figure reads as a run figure."""
@@ -490,7 +499,7 @@ def lines(e, axis):
         groups.setdefault(tuple(e.grid[g, i] for i in others), []).append(g)
     result = []
     for key, points in groups.items():
-        label = ", ".join(f"{short(e.parameters[i])} = {v:g}" for i, v in zip(others, key))
+        label = ", ".join(parameter_value(e.parameters[i], v) for i, v in zip(others, key))
         result.append((label, sorted(points, key=lambda g: e.grid[g, axis])))
     return result
 
