@@ -1,7 +1,7 @@
 """What can be checked of a rendered matplotlib Figure, as a list of problems (empty: none).
 
 - no bars on a logarithmic axis;
-- every legend lies inside the figure, has at most MAX_ENTRIES entries, no two entries with
+- every legend lies inside the figure, hides at most 5 % of its panel's data points, has at most MAX_ENTRIES entries, no two entries with
   the same label or the same look (colour, line style, marker), and an entry that names
   its colour, "(red)", is drawn in that colour;
 - no text is cut: every axes with its labels, ticks and title, and every figure text,
@@ -26,6 +26,7 @@ from matplotlib.patches import Patch, Rectangle
 
 MAX_ENTRIES = 10  # eight asperities, the imposed x0 and the element length
 TOLERANCE_PX = 2.0
+MAX_COVERED = 0.05  # of a panel's data points a legend may sit on
 ASCII_MICRO = re.compile(r"(\d\s?|\[)u[ms]\b")
 # A word names the CSS colour or matplotlib's default-cycle ("tab:") shade of it.
 TAB = {"red": "tab:red", "blue": "tab:blue", "green": "tab:green", "orange": "tab:orange", "grey": "tab:gray",
@@ -71,8 +72,33 @@ def handle_colour(handle):
     return None
 
 
-def legend_problems(legend, where, figure_box, renderer):
+def covered_fraction(ax, box):
+    """The fraction of the axes' data points (line vertices, scatter points, bars) drawn under
+    the display box `box`."""
+    points = [line.get_transform().transform(line.get_xydata()) for line in ax.get_lines()
+              if line.get_transform() == ax.transData and len(line.get_xydata()) > 1]
+    points += [c.get_offset_transform().transform(c.get_offsets()) for c in ax.collections
+               if not isinstance(c, QuadMesh) and len(c.get_offsets()) > 1]
+    bars = [p for p in ax.patches if isinstance(p, Rectangle) and p.get_data_transform() == ax.transData]
+    if bars:  # a bar by the middle of its top edge and its centre
+        tops = [(b.get_x() + b.get_width() / 2, b.get_y() + b.get_height()) for b in bars]
+        middles = [(b.get_x() + b.get_width() / 2, b.get_y() + b.get_height() / 2) for b in bars]
+        points.append(ax.transData.transform(np.array(tops + middles, float)))
+    if not points:
+        return 0.0
+    xy = np.concatenate(points)
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    window = ax.get_window_extent()
+    shown = (xy[:, 0] >= window.x0) & (xy[:, 0] <= window.x1) & (xy[:, 1] >= window.y0) & (xy[:, 1] <= window.y1)
+    under = shown & (xy[:, 0] >= box.x0) & (xy[:, 0] <= box.x1) & (xy[:, 1] >= box.y0) & (xy[:, 1] <= box.y1)
+    return float(np.count_nonzero(under)) / max(1, np.count_nonzero(shown))
+
+
+def legend_problems(legend, where, figure_box, renderer, ax=None):
     problems = []
+    box = legend.get_window_extent(renderer)
+    if ax is not None and covered_fraction(ax, box) > MAX_COVERED:
+        problems.append(f"{where}: the legend hides {100 * covered_fraction(ax, box):.0f} % of the panel's data")
     if not inside(legend.get_window_extent(renderer), figure_box):
         problems.append(f"{where}: the legend reaches outside the figure")
     labels = [t.get_text() for t in legend.get_texts()]
@@ -149,7 +175,7 @@ def axes_problems(ax, where, figure_box, renderer, expected_mhz):
     if bars and ax.get_yscale() == "log":
         problems.append(f"{where}: bars on a logarithmic axis (a bar's length there depends on an arbitrary base)")
     if ax.get_legend() is not None:
-        problems += legend_problems(ax.get_legend(), where, figure_box, renderer)
+        problems += legend_problems(ax.get_legend(), where, figure_box, renderer, ax)
     return problems
 
 

@@ -2,7 +2,7 @@
 """The figure checks themselves (scripts/figure_checks.py), on small planted figures.
 
 A clean figure must pass; the same figure with one planted fault — a legend placed outside
-the figure, a flat panel that does not say why, round-off drawn with a 1e-12 multiplier,
+the figure, a legend over the data, a flat panel that does not say why, round-off drawn with a 1e-12 multiplier,
 an expected line beyond the frequency axis, a 26-entry legend, two entries with the same
 label, two drawn alike, "(red)" on an orange curve, "um", bars on a log axis, a title cut
 by the figure's edge — must fail, naming the fault. A flat panel that says "identically
@@ -59,6 +59,15 @@ class FigureChecksTest(unittest.TestCase):
         fig, top, _ = clean()
         top.legend(loc="upper left", bbox_to_anchor=(1.3, 1.0))
         self.assertFault(fig, "legend reaches outside the figure")
+
+    def test_legend_over_the_data(self):
+        fig, top, _ = clean()
+        top.clear()
+        top.plot(T, np.full_like(T, 0.95), color="C0", label="a trace along the top")
+        top.plot(T, np.zeros_like(T) + T / 100, color="C1", label="another")
+        top.set_ylim(0, 1)
+        top.legend(loc="upper center", fontsize=12, ncol=2, mode="expand")
+        self.assertFault(fig, "the legend hides")
 
     def test_flat_panel_without_a_word(self):
         fig, top, _ = clean()
