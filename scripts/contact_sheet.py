@@ -56,7 +56,9 @@ def thumbnails(paths, folder, width):
     for path in paths:
         with Image.open(path) as image:
             image = image.convert("RGB")
-            small = image.resize((width, round(image.height * width / image.width)), Image.LANCZOS)
+            # A wide figure (three panels in a row) would be a strip too thin to read at `width`.
+            wide = round(width * 1.7) if image.width > 2 * image.height else width
+            small = image.resize((wide, round(image.height * wide / image.width)), Image.LANCZOS)
         # 256 colours: a figure has few, and the thumbnails stay a few tens of kB each.
         small.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(
             os.path.join(folder, os.path.basename(path)), optimize=True)
@@ -67,7 +69,8 @@ def main():
     parser.add_argument("folders", nargs="+", help="folders of rendered PNG figures")
     parser.add_argument("--out", required=True, help="the mosaic PNG to write")
     parser.add_argument("--thumbnails", help="also write each figure scaled to --width into this folder")
-    parser.add_argument("--width", type=int, default=520, help="thumbnail width [px] (default %(default)s)")
+    parser.add_argument("--width", type=int, default=520,
+                        help="thumbnail width [px], 1.7 x that for figures over twice as wide as high (default %(default)s)")
     args = parser.parse_args()
     paths = figures(args.folders, args.out)
     if not paths:
