@@ -38,9 +38,9 @@ def silent(f):
         if is_round_off(v, scale):
             quiet["voltage"] = (float(np.max(np.abs(v), initial=0.0)), cancel)
     if "circuit/charge" in f:
-        q = f["circuit/charge"][:]
-        if is_round_off(q, ELEMENTARY_CHARGE_C / 1e-9):  # below one electron
-            quiet["charge"] = (float(np.max(np.abs(q), initial=0.0)), cancel)
+        peak = float(np.max(np.abs(f["circuit/charge"][:]), initial=0.0))
+        if peak <= ELEMENTARY_CHARGE_C:  # less than one electron moved: no charge at all
+            quiet["charge"] = (peak, cancel)
     return quiet
 
 
