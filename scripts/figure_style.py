@@ -70,13 +70,14 @@ class StiffnessColours:
     """Colours of the asperities: distinct C0..C7 with a legend entry each up to
     MAX_LEGEND_ENTRIES asperities, else one colour per stiffness from a colour scale (and a
     colour bar instead of the legend). Identical stiffnesses with different drive phases are
-    named by their phase."""
+    named by their phase. Elements of unknown stiffness (a `stengmc circuit` file) keep the
+    default colours, and past MAX_LEGEND_ENTRIES no legend entry."""
 
     def __init__(self, k, phase=None, known=True):
         """known False: `k` are stand-ins (a file without stiffnesses); entries say "element i"."""
         self.k = np.asarray(k, float)
         self.known = known
-        self.scaled = self.k.size > MAX_LEGEND_ENTRIES
+        self.scaled = self.k.size > MAX_LEGEND_ENTRIES and known
         self.phase = None if phase is None else np.asarray(phase, float)
         if self.scaled:
             positive = self.k[self.k > 0]
@@ -92,7 +93,7 @@ class StiffnessColours:
 
     def label(self, i):
         """The legend entry of asperity i; None when a colour bar tells them apart."""
-        if self.scaled:
+        if self.scaled or (not self.known and self.k.size > MAX_LEGEND_ENTRIES):
             return None
         if not self.known:
             return f"element {i + 1}"

@@ -79,8 +79,11 @@ def run_figure(f, path):
     t_factor, t_unit = unit("s")
     t = f["time"][:] * t_factor
     tc = t[: f["circuit/voltage"].shape[0]] if "circuit/voltage" in f else t
-    k = f["asperity/k"][:] if "asperity/k" in f else np.ones(f["asperity/x"].shape[0] if "asperity/x" in f else 0)
-    colours = StiffnessColours(k, f["asperity/phi"][:] if "asperity/phi" in f else None)
+    if "asperity/k" in f:
+        colours = StiffnessColours(f["asperity/k"][:], f["asperity/phi"][:] if "asperity/phi" in f else None)
+    else:  # a `stengmc circuit` file: elements driven by given displacements, no stiffness
+        elements = f["asperity/x"].shape[0] if "asperity/x" in f else 0
+        colours = StiffnessColours(np.arange(1.0, elements + 1), known=False)
     panels = [name for name, dataset in PANELS if dataset in f]  # a study may leave traces out
     quiet = silent(f)
     heights = [0.55 if p in quiet else 1.0 for p in panels]
