@@ -4,8 +4,9 @@ the element-current spectra (Fig. 7a/b) and the spectrogram (Fig. 8), when prese
 
 The frequency axis is set by the physics, not by the data's strongest bin (a drift bin of a
 few kHz in any record with drift): it reaches past the highest expected line (the sliding
-asperities' natural frequencies), or, without expected lines, up to the study's
-[spectrum] max_frequency_hz, or the Nyquist frequency. Peaks and lines found beyond it are
+asperities' natural frequencies), or, without expected lines (a measured record), up to
+the study's [spectrum] max_frequency_hz, else past the highest peak the analysis found
+above the noise floor, else to the Nyquist frequency. Peaks and lines found beyond it are
 counted in the title. Debian's python3-h5py and matplotlib."""
 import textwrap
 
@@ -50,7 +51,10 @@ def frequency_limit(f, nyquist):
     if lines.size:
         return min(nyquist, HEADROOM * float(lines.max()))
     band = configured_band(f)
-    return min(nyquist, band) if band > 0 else nyquist
+    if band > 0:
+        return min(nyquist, band)
+    peaks = f["spectrum/peaks/frequency"][:] if "spectrum/peaks/frequency" in f else np.empty(0)
+    return min(nyquist, HEADROOM * float(peaks.max())) if peaks.size and peaks.max() > 0 else nyquist
 
 
 def beyond(f, name, top_hz):
@@ -78,7 +82,7 @@ def voltage_panel(ax, f, freq, top_hz, colours):
     ax.set_ylabel("amplitude [V]")
     title = "voltage spectrum"
     id_group = "spectrum/identifiability/fft"
-    if id_group in f:
+    if id_group in f and int(f[id_group].attrs.get("n_sliding", 0)) > 0:  # a measured record has no truth
         g = f[id_group]
         title += f"  (FFT: {int(g.attrs['n_identifiable'])}/{int(g.attrs['n_sliding'])} identifiable"
         hr = "spectrum/identifiability/high_resolution"
@@ -89,7 +93,8 @@ def voltage_panel(ax, f, freq, top_hz, colours):
               (beyond(f, "spectrum/lines/frequency", top_hz), "ESPRIT lines")]
     hidden = [f"{n} {what}" for n, what in hidden if n]
     if hidden:
-        title += f"\n{' and '.join(hidden)} above {top_hz * f_factor:.3g} MHz, past every expected line, not shown"
+        past = ", past every expected line" if expected_lines(f).size else ""
+        title += f"\n{' and '.join(hidden)} above {top_hz * f_factor:.3g} MHz{past}, not shown"
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)  # beside: peaks fill the top
 
