@@ -67,6 +67,11 @@ COMMANDS = {
     "cmake -S . -B build -DSTENGMC_BUILD_BENCHMARKS=ON && bash bench/run_all.sh": "the benchmarks (~4 min plus a build)",
     "cmake -S . -B build && cmake --build build -j2": "the build itself, done before any test runs",
     "PYTHONPATH=build/python /usr/bin/python3 -c \"import stengmc; print(stengmc.__version__)\"": RUN,
+    "/usr/bin/python3 scripts/contact_sheet.py build/tests/paper-results build/tests/surface-results "
+    "build/tests/ensemble-results build/tests/inverse-demo-results --out results/contact_sheet.png "
+    "--thumbnails docs/figures/contact --width 520":
+        "rewrites the committed thumbnails from the result folders the RunAndRender tests leave; "
+        "Figures.EveryShippedFigurePassesTheChecks checks those figures",
 }
 LIMIT_S = 300
 
