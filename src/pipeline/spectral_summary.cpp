@@ -17,41 +17,37 @@ std::string verdict(const Identifiability& id, std::size_t i, double expected_hz
   return id.matched_line.at(i) < 0 ? "not found" : "ambiguous";
 }
 
-//! The FFT peaks (and ESPRIT lines) found, by frequency: at most MAX_LISTED of each, the
-//! strongest, the rest counted (every one is in the output file).
-std::string format_found_lines(const SpectralResult& result) {
+//! A table of found items (FFT peaks or ESPRIT lines), by frequency: at most 20, the
+//! strongest, the rest counted (every one is in the output file at `dataset`). `third`
+//! names the last column and `value` reads it.
+template <class Item, class Third>
+std::string format_found(std::vector<Item> items, const char* what, const char* third, Third value,
+                         const char* dataset) {
   constexpr std::size_t MAX_LISTED = 20;
-  std::string out;
+  const std::size_t found = items.size();
+  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.amplitude > b.amplitude; });
+  if (items.size() > MAX_LISTED) items.resize(MAX_LISTED);
+  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.frequency_hz < b.frequency_hz; });
   char line[160];
-  const auto strongest = [&](auto items) {  // by amplitude, the kept ones by frequency
-    std::sort(items.begin(), items.end(), [](const auto& a, const auto& b) { return a.amplitude > b.amplitude; });
-    if (items.size() > MAX_LISTED) items.resize(MAX_LISTED);
-    std::sort(items.begin(), items.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
-    return items;
-  };
-  std::snprintf(line, sizeof line, "%-4s %14s %14s %16s\n", "#", "FFT peak [MHz]", "amplitude [V]", "prominence [V]");
-  out += line;
-  const auto peaks = strongest(result.peaks);
-  for (std::size_t i = 0; i < peaks.size(); ++i) {
-    std::snprintf(line, sizeof line, "%-4zu %14.5f %14.4g %16.4g\n", i + 1, peaks[i].frequency_hz * 1e-6,
-                  peaks[i].amplitude, peaks[i].prominence);
+  std::snprintf(line, sizeof line, "%-4s %14s %14s %16s\n", "#", what, "amplitude [V]", third);
+  std::string out = line;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    std::snprintf(line, sizeof line, "%-4zu %14.5f %14.4g %16.4g\n", i + 1, items[i].frequency_hz * 1e-6,
+                  items[i].amplitude, value(items[i]));
     out += line;
   }
+  if (found > items.size()) out += "     ... and " + std::to_string(found - items.size()) + " weaker (" + dataset + ")\n";
+  return out;
+}
+
+//! What a record's spectrum holds when there are no asperities to compare with.
+std::string format_found_lines(const SpectralResult& result) {
+  std::string out = format_found(result.peaks, "FFT peak [MHz]", "prominence [V]",
+                                 [](const Peak& p) { return p.prominence; }, "/spectrum/peaks");
   if (result.peaks.empty()) out += "     (no peak stands above the noise floor)\n";
-  if (result.peaks.size() > peaks.size())
-    out += "     ... and " + std::to_string(result.peaks.size() - peaks.size()) + " weaker peaks (/spectrum/peaks)\n";
-  if (result.high_resolution) {
-    std::snprintf(line, sizeof line, "%-4s %14s %14s %16s\n", "#", "ESPRIT [MHz]", "amplitude [V]", "damping [1/s]");
-    out += line;
-    const auto lines = strongest(result.lines);
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-      std::snprintf(line, sizeof line, "%-4zu %14.5f %14.4g %16.4g\n", i + 1, lines[i].frequency_hz * 1e-6,
-                    lines[i].amplitude, lines[i].damping_per_s);
-      out += line;
-    }
-    if (result.lines.size() > lines.size())
-      out += "     ... and " + std::to_string(result.lines.size() - lines.size()) + " weaker lines (/spectrum/lines)\n";
-  }
+  if (result.high_resolution)
+    out += format_found(result.lines, "ESPRIT [MHz]", "damping [1/s]", [](const Line& l) { return l.damping_per_s; },
+                        "/spectrum/lines");
   return out;
 }
 
