@@ -144,7 +144,8 @@ void add_grid(py::dict& out, const StudyFile& base, const std::vector<GridPoint>
 py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
   if (!base.ensemble)
     throw InputError(base.file + ": has no [ensemble] table: run one realisation with run(), or add [ensemble]");
-  if (threads < 0) throw InputError("threads = " + std::to_string(threads) + ": expected 0 (every core) or more");
+  if (threads < 0 || threads > MAX_THREADS)
+    throw InputError("threads = " + std::to_string(threads) + ": expected 0 (every core) to " + std::to_string(MAX_THREADS));
   std::vector<GridPoint> grid;
   {
     py::gil_scoped_release release;
@@ -169,6 +170,7 @@ py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
 }  // namespace
 
 void bind_ensemble(py::module_& m) {
+  m.attr("MAX_THREADS") = MAX_THREADS;  // stengmc.Study.run_ensemble checks `threads` against it
   m.def("run_ensemble", &run_ensemble_study, py::arg("study"), py::arg("threads") = 0, py::arg("progress") = false,
         "Runs every realisation of an [ensemble] study (each grid point of a sweep) on `threads` threads "
         "(0: OMP_NUM_THREADS or every core); the ensemble file's records and statistics as dicts");

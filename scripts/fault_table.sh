@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The fault table of the README ("Rejected inputs and faults"), measured: every command on
-# a full disk, kills while writing, an output that is an input, a device as output, stale
-# temporaries. For each it checks the exit code, the message, what is left in the output
-# folder and that every input (and an ensemble's journal) is intact, and prints one row.
+# The fault table of docs/faults.md ("The fault table"), measured: every command on a full
+# disk, kills while writing, an output that is an input, a device as output, stale
+# temporaries, and for calibrate, invert, merge, export-netlist and plot also a FIFO or a
+# device as input. For each it checks the exit code, the message, what is left in the
+# output folder and that every input (and a journal) is intact, and prints one row.
 #
 #   bash scripts/fault_table.sh [BUILD_DIR]      (default: build; after scripts/build.sh)
 #
@@ -78,7 +79,20 @@ with open(f"{work}/v.csv", "w") as f:
         f.write(f"{j * 1e-7!r},{math.sin(2 * math.pi * 1e5 * j * 1e-7)!r}\n")
 EOF
 surface=$PWD/surfaces/pet_on_steel_gw.toml
-inputs=("$work/run.toml" "$work/ensemble.toml" "$work/x.csv" "$work/v.csv" "$surface")
+# calibrate, invert, merge, export-netlist and plot: the inverse tests' known device with its
+# quick prior (a bank of 50 records in seconds), a bank and a record of it, two shards of
+# the ensemble, a run file to plot.
+{ echo "duration_s = 20e-6"; cat tests/support/known_device.toml; echo "[inverse]"
+  cat tests/support/known_device_quick_prior.toml; } > "$work/device.toml"
+"$stengmc" calibrate "$work/device.toml" -j 2 -o "$work/bank.h5" > /dev/null 2>&1 || { echo "fault_table: calibrate failed" >&2; exit 1; }
+"$stengmc" run "$work/device.toml" -o "$work/rec.h5" > /dev/null 2>&1 || { echo "fault_table: the record's run failed" >&2; exit 1; }
+for i in 0 1; do
+  "$stengmc" run "$work/ensemble.toml" --shard $i/2 -j 2 -o "$work/s$i.shard" > /dev/null 2>&1 \
+    || { echo "fault_table: shard $i failed" >&2; exit 1; }
+done
+"$stengmc" run "$work/run.toml" -o "$work/r.h5" > /dev/null 2>&1 || { echo "fault_table: the run to plot failed" >&2; exit 1; }
+inputs=("$work/run.toml" "$work/ensemble.toml" "$work/x.csv" "$work/v.csv" "$surface" "$work/device.toml" "$work/bank.h5"
+        "$work/rec.h5" "$work/s0.shard" "$work/s1.shard" "$work/r.h5")
 checksum() { sha256sum "${inputs[@]}" | sha256sum | cut -c1-16; }
 before=$(checksum)
 
@@ -103,9 +117,11 @@ EOF
 }
 leftover() { local l; l=$(ls -A "$disk" | grep -v -E '^fill$' | paste -sd' '); echo "${l:-nothing}"; }
 
-# A full disk: `free` bytes left for the output (0: full before the command starts).
+# A full disk: `free` bytes left for the output (0: full before the command starts); a
+# second argument is a file put on the disk first (plot's input, beside which it writes).
 fill_disk() {
   rm -rf "${disk:?}"/*
+  if (($# > 1)); then cp "$2" "$disk/"; fi
   if ((mounted)); then
     dd if=/dev/zero of="$disk/fill" bs=1k count=1000000 2>/dev/null  # fills it
     if (($1 > 0)); then truncate -s "-$1" "$disk/fill"; fi
@@ -115,18 +131,19 @@ fill_disk() {
   fi
 }
 
-full_disk_case() {  # name, free bytes, command line with OUT
-  local name=$1 free=$2 args=${3//OUT/$disk\/$1.h5}
+full_disk_case() {  # name, free bytes, command line with OUT[, the output's extension]
+  local name=$1 free=$2 extension=${4:-.h5}
+  local args=${3//OUT/$disk\/$1$extension}
   fill_disk "$free"
   "${env_prefix[@]}" "$stengmc" $args > "$work/log" 2>&1
   local rc=$?
   local left; left=$(leftover)
   local intact=yes; [[ $(checksum) == "$before" ]] || intact=NO
   local verdict=clean
-  [[ $rc -eq 1 ]] && grep -q "No space left on device" "$work/log" && grep -q "$disk/$name.h5" "$work/log" \
+  [[ $rc -eq 1 ]] && grep -q "No space left on device" "$work/log" && grep -q "$disk/$name$extension" "$work/log" \
     && [[ $left == nothing && $intact == yes ]] || verdict=FAILED
   local when="full from the start"; ((free > 0)) && when="fills while writing"
-  local shown=${3//OUT/out.h5}; shown=${shown//$work\//}; shown=${shown//$PWD\//}
+  local shown=${3//OUT/out$extension}; shown=${shown//$work\//}; shown=${shown//$PWD\//}
   row "full disk ($when)" "$shown" "$rc" "$(excerpt "$work/log")" "$left" "$intact" "$verdict"
 }
 
@@ -135,6 +152,23 @@ for free in 0 8192; do
   full_disk_case circuit "$free" "circuit $work/x.csv -R 1e6 -o OUT"
   full_disk_case spectrum "$free" "spectrum $work/v.csv -o OUT"
   full_disk_case surface "$free" "surface $surface -k 20 -o OUT"
+  # calibrate's journal comes first: a disk that fills mid-run is the journal's (below).
+  ((free == 0)) && full_disk_case calibrate "$free" "calibrate $work/device.toml -j 2 -o OUT"
+  full_disk_case invert "$free" "invert $work/rec.h5 --known $work/device.toml --bank $work/bank.h5 -o OUT"
+  full_disk_case merge "$free" "merge $work/s0.shard $work/s1.shard -o OUT"
+  full_disk_case export-netlist "$free" "export-netlist $work/run.toml -o OUT" .cir
+done
+# plot writes its figures beside the file it plots, on the full disk with it.
+for free in 0 8192; do
+  fill_disk "$free" "$work/r.h5"
+  "${env_prefix[@]}" "$stengmc" plot "$disk/r.h5" > "$work/log" 2>&1; rc=$?
+  left=$(leftover); intact=yes; [[ $(checksum) == "$before" ]] || intact=NO
+  verdict=clean
+  [[ $rc -eq 1 && $left == r.h5 && $intact == yes ]] && grep -q "r.png: cannot write the figure: No space left on device" "$work/log" \
+    || verdict=FAILED
+  when="full from the start"; ((free > 0)) && when="fills while writing"
+  row "full disk ($when)" "plot r.h5 (on the disk)" "$rc" "$(grep -m1 "cannot write the figure" "$work/log" | sed -e "s#$work/##g")" \
+      "$left" "$intact" "$verdict"
 done
 
 # The ensemble: the disk fills after its journal is written (the journal, a few kB, is
@@ -162,29 +196,77 @@ verdict=clean
 row "full disk (output fails, journal fits)" "run ensemble.toml -o out.h5" "$rc" "$(excerpt "$work/log")" "$left" \
     "journal kept; rerun: $resumed, datasets equal to an uninterrupted run: $same" "$verdict"
 
+# The same for calibrate: the disk fills while records are journalled (8 kB left: the
+# journal keeps the whole records it holds), or its journal (~100 kB) fits and the bank
+# (~1.7 MB) does not; each time the same command with space again resumes the journal.
+fill_disk 8192
+"${env_prefix[@]}" "$stengmc" calibrate "$work/device.toml" -j 2 -o "$disk/bank.h5" > "$work/log" 2>&1
+rc=$?
+left=$(leftover)
+rm -f "$disk/fill"
+"$stengmc" calibrate "$work/device.toml" -j 2 -o "$disk/bank.h5" > "$work/log2" 2>&1; rc2=$?
+resumed=$(grep -o "[0-9]* resumed" "$work/log2" || echo "0 resumed")
+verdict=clean
+[[ $rc -eq 1 && $left == "bank.h5.journal" && $rc2 -eq 0 && $resumed != "0 resumed" && $(leftover) == bank.h5 ]] \
+  && grep -q "No space left on device" "$work/log" || verdict=FAILED
+row "full disk (fills while the records are journalled)" "calibrate device.toml -o bank.h5" "$rc" "$(excerpt "$work/log")" \
+    "$left" "journal kept; rerun: exit $rc2, $resumed, only the bank left" "$verdict"
+
+if ((mounted)); then
+  fill_disk 400000
+  cal_env=()
+else
+  cal_env=(env "LD_PRELOAD=$shim" "STENGMC_FAULT_PATH_CONTAINS=$disk/" "STENGMC_FAULT_EXEMPT_CONTAINS=journal"
+           "STENGMC_FAULT_FREE_BYTES=2048")
+fi
+"${cal_env[@]}" "$stengmc" calibrate "$work/device.toml" -j 2 -o "$disk/bank.h5" > "$work/log" 2>&1
+rc=$?
+left=$(leftover)
+rm -f "$disk/fill"
+"$stengmc" calibrate "$work/device.toml" -j 2 -o "$disk/bank.h5" > "$work/log2" 2>&1; rc2=$?
+resumed=$(grep -o "[0-9]* resumed" "$work/log2" || echo "0 resumed")
+verdict=clean
+[[ $rc -eq 1 && $left == "bank.h5.journal" && $rc2 -eq 0 && $resumed == "50 resumed" && $(leftover) == bank.h5 ]] \
+  && grep -q "No space left on device" "$work/log" || verdict=FAILED
+row "full disk (bank fails, journal fits)" "calibrate device.toml -o bank.h5" "$rc" "$(excerpt "$work/log")" "$left" \
+    "journal kept; rerun: exit $rc2, $resumed, only the bank left" "$verdict"
+
 # ---------------------------------------------------------------- kills
-rm -rf "${disk:?}"/*
-if [[ -f $shim ]]; then
+# The shim stalls the first write of the output (a journal is written as usual), and the
+# command is killed there: SIGTERM must remove the temporary (a journal stays: it is what
+# the next run resumes), after SIGKILL the next run of the same command must remove it.
+kill_case() {  # name, command line with OUT, the output's extension, what SIGTERM leaves ("": nothing)
+  local name=$1 extension=$3 kept=${4:-nothing}
+  local args=${2//OUT/$disk\/$name$extension}
+  local shown=${2//OUT/out$extension}; shown=${shown//$work\//}; shown=${shown//$PWD\//}
+  local sig pid rc rc2 during left after verdict
   for sig in TERM KILL; do
-    rm -f "$work/stalled"
-    env "LD_PRELOAD=$shim" "STENGMC_FAULT_PATH_CONTAINS=$disk/" "STENGMC_FAULT_STALL_MARKER=$work/stalled" \
-      "$stengmc" run "$work/run.toml" -o "$disk/killed.h5" > "$work/log" 2>&1 &
+    rm -rf "${disk:?}"/* "$work/stalled"
+    env "LD_PRELOAD=$shim" "STENGMC_FAULT_PATH_CONTAINS=$disk/" "STENGMC_FAULT_EXEMPT_CONTAINS=journal" \
+      "STENGMC_FAULT_STALL_MARKER=$work/stalled" "$stengmc" $args > "$work/log" 2>&1 &
     pid=$!
-    for _ in $(seq 600); do [[ -f $work/stalled ]] && break; sleep 0.05; done
+    for _ in $(seq 1200); do [[ -f $work/stalled ]] && break; sleep 0.05; done
     during=$(ls -A "$disk" | paste -sd' ')
     kill -s "$sig" "$pid"; wait "$pid"; rc=$?
     left=$(leftover)
     if [[ $sig == TERM ]]; then
-      verdict=clean; [[ $left == nothing && -n $during ]] || verdict=FAILED
-      row "SIGTERM while writing the output" "run run.toml -o out.h5" "$rc (killed)" "(none: killed)" "$left (while writing: $during)" "yes" "$verdict"
+      verdict=clean; [[ $left == "$kept" && $during == *.tmp* ]] || verdict=FAILED
+      row "SIGTERM while writing the output" "$shown" "$rc (killed)" "(none: killed)" "$left (while writing: $during)" "yes" "$verdict"
     else
-      "$stengmc" run "$work/run.toml" -o "$disk/killed.h5" > "$work/log" 2>&1; rc2=$?
+      "$stengmc" $args > "$work/log" 2>&1; rc2=$?
       after=$(ls -A "$disk" | paste -sd' ')
-      verdict=clean; [[ $left == *.tmp* && $rc2 -eq 0 && $after == "killed.h5" ]] || verdict=FAILED
-      row "SIGKILL while writing the output" "run run.toml -o out.h5, then the same again" "$rc (killed), then $rc2" \
+      verdict=clean; [[ $left == *.tmp* && $rc2 -eq 0 && $after == "$name$extension" ]] || verdict=FAILED
+      row "SIGKILL while writing the output" "$shown, then the same again" "$rc (killed), then $rc2" \
           "(none: killed)" "after the kill: $left; after the next run: $after" "yes" "$verdict"
     fi
   done
+}
+if [[ -f $shim ]]; then
+  kill_case killed "run $work/run.toml -o OUT" .h5
+  kill_case bank "calibrate $work/device.toml -j 2 -o OUT" .h5 bank.h5.journal
+  kill_case inverse "invert $work/rec.h5 --known $work/device.toml --bank $work/bank.h5 -o OUT" .h5
+  kill_case merged "merge $work/s0.shard $work/s1.shard -o OUT" .h5
+  kill_case netlist "export-netlist $work/run.toml -o OUT" .cir
 fi
 # An ensemble killed mid-run resumes to the uninterrupted result.
 rm -rf "${disk:?}"/*
@@ -224,6 +306,57 @@ fi
 still=NO; { [[ -c $device ]] || [[ -p $device ]]; } && still=yes
 verdict=clean; [[ $rc -eq 2 && $still == yes ]] || verdict=FAILED
 row "device as output: $kind" "run run.toml -o null.h5" "$rc" "$(excerpt "$work/log")" "nothing" "node kept: $still" "$verdict"
+
+# The same for calibrate, invert, merge, export-netlist and plot: an output that is one of
+# the command's inputs, an output that is a device, an input that is a FIFO or a device.
+# `timeout` turns a hang (a FIFO read for ever) into exit 124, a failure.
+refusal_case() {  # fault, command shown, the file that must stay as it was, arguments...
+  local fault=$1 shown=$2 kept=$3; shift 3
+  local kind_before; kind_before=$(stat -c %F "$kept"); local sum_before=""
+  [[ -f $kept ]] && sum_before=$(sha256sum < "$kept")
+  timeout 60 "$stengmc" "$@" > "$work/log" 2>&1; local rc=$?
+  local intact=yes
+  [[ $(stat -c %F "$kept") == "$kind_before" ]] || intact=NO
+  [[ -z $sum_before || $(sha256sum < "$kept") == "$sum_before" ]] || intact=NO
+  local verdict=clean; [[ $rc -eq 2 && $intact == yes ]] && grep -q "$(basename "$kept")" "$work/log" || verdict=FAILED
+  row "$fault" "$shown" "$rc" "$(excerpt "$work/log")" "nothing" "$(basename "$kept") kept as it was: $intact" "$verdict"
+}
+cp "$work/device.toml" "$work/dev_self.toml"
+refusal_case "output = input" "calibrate d.toml -o d.toml" "$work/dev_self.toml" calibrate "$work/dev_self.toml" -o "$work/dev_self.toml"
+refusal_case "output = input" "invert rec.h5 --known d.toml -o rec.h5" "$work/rec.h5" \
+  invert "$work/rec.h5" --known "$work/device.toml" -o "$work/rec.h5"
+refusal_case "output = input" "invert rec.h5 --known d.toml --bank bank.h5 -o bank.h5" "$work/bank.h5" \
+  invert "$work/rec.h5" --known "$work/device.toml" --bank "$work/bank.h5" -o "$work/bank.h5"
+refusal_case "output = input" "merge s0 s1 -o s0" "$work/s0.shard" merge "$work/s0.shard" "$work/s1.shard" -o "$work/s0.shard"
+refusal_case "output = input" "export-netlist run.toml -o run.toml" "$work/run.toml" \
+  export-netlist "$work/run.toml" -o "$work/run.toml"
+cp "$work/r.h5" "$work/f.png"  # a run file named like its own figure
+refusal_case "output = input" "plot f.png (a run file)" "$work/f.png" plot "$work/f.png"
+
+mkdir -p "$work/dev"
+if mknod "$work/dev/null.h5" c 1 3 2>/dev/null && mknod "$work/dev/null.cir" c 1 3 && mknod "$work/dev/r.png" c 1 3; then
+  kind="a character device"
+else
+  mkfifo "$work/dev/null.h5" "$work/dev/null.cir" "$work/dev/r.png"; kind="a FIFO (no root: no device node)"
+fi
+cp "$work/r.h5" "$work/dev/r.h5"
+refusal_case "device as output: $kind" "calibrate d.toml -o null.h5" "$work/dev/null.h5" calibrate "$work/device.toml" -o "$work/dev/null.h5"
+refusal_case "device as output: $kind" "invert rec.h5 --known d.toml -o null.h5" "$work/dev/null.h5" \
+  invert "$work/rec.h5" --known "$work/device.toml" -o "$work/dev/null.h5"
+refusal_case "device as output: $kind" "merge s0 s1 -o null.h5" "$work/dev/null.h5" merge "$work/s0.shard" "$work/s1.shard" -o "$work/dev/null.h5"
+refusal_case "device as output: $kind" "export-netlist run.toml -o null.cir" "$work/dev/null.cir" \
+  export-netlist "$work/run.toml" -o "$work/dev/null.cir"
+refusal_case "device as a figure: $kind at r.png" "plot r.h5" "$work/dev/r.png" plot "$work/dev/r.h5"
+
+mkfifo "$work/fifo.toml" "$work/fifo.h5" "$work/fifo.csv" "$work/fifo.shard"
+refusal_case "FIFO as input" "calibrate fifo.toml" "$work/fifo.toml" calibrate "$work/fifo.toml" -o "$work/fifo_bank.h5"
+refusal_case "FIFO as input" "invert fifo.csv --known d.toml" "$work/fifo.csv" invert "$work/fifo.csv" --known "$work/device.toml" -o "$work/fifo_inv.h5"
+refusal_case "FIFO as input" "invert rec.h5 --known d.toml --bank fifo.h5" "$work/fifo.h5" \
+  invert "$work/rec.h5" --known "$work/device.toml" --bank "$work/fifo.h5" -o "$work/fifo_inv.h5"
+refusal_case "FIFO as input" "merge s0 fifo.shard" "$work/fifo.shard" merge "$work/s0.shard" "$work/fifo.shard" -o "$work/fifo_merged.h5"
+refusal_case "FIFO as input" "export-netlist fifo.toml" "$work/fifo.toml" export-netlist "$work/fifo.toml" -o "$work/fifo.cir"
+refusal_case "FIFO as input" "plot fifo.h5" "$work/fifo.h5" plot "$work/fifo.h5"
+refusal_case "device as input" "merge s0 /dev/zero" /dev/zero merge "$work/s0.shard" /dev/zero -o "$work/zero_merged.h5"
 
 # ---------------------------------------------------------------- stale temporaries
 rm -rf "${disk:?}"/*

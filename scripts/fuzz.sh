@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # More of the readers' fuzz tests than CI runs (CI: 2000 executions per reader, seed 1):
 #   bash scripts/fuzz.sh [RUNS] [SEED] [READER ...]     defaults: 20000, 2, every reader
-# READER: study | surface | csv | hdf5 | record | netlist. Runs the sanitizer build's fuzzer when
-# there is one (scripts/test.sh builds it in build-sanitize/), else build/'s. The same RUNS and SEED give
+# READER: study | surface | csv | hdf5 | record | netlist | bank. Runs the sanitizer build's fuzzer
+# when there is one (scripts/test.sh builds it in build-sanitize/), else build/'s. The same RUNS and SEED give
 # the same inputs on every machine; findings are kept in results/fuzz-findings/ and make
 # this script exit 1.
 set -euo pipefail
@@ -11,7 +11,7 @@ runs=${1:-20000}
 seed=${2:-2}
 shift $(( $# > 2 ? 2 : $# ))
 readers=("$@")
-((${#readers[@]})) || readers=(study surface csv hdf5 record netlist)
+((${#readers[@]})) || readers=(study surface csv hdf5 record netlist bank)
 fuzzer=build-sanitize/tests/fuzz_readers
 [[ -x $fuzzer ]] || fuzzer=build/tests/fuzz_readers
 [[ -x $fuzzer ]] || { echo "fuzz: no fuzz_readers built: run scripts/build.sh (or scripts/test.sh) first" >&2; exit 1; }

@@ -1,23 +1,65 @@
 #!/usr/bin/env bash
-# The inverse estimation's validation (issue 11; docs/inverse.md, "validation"):
-# for each known device of studies/inverse/ (v_b = 10 and 5 m/s), a calibration bank from
-# its [inverse] prior (seeds 1100, 500), 250 validation signals of the same prior drawn as an
-# ensemble with other seeds (2100, 1500), those signals inverted with the bank, and the
-# results table (scripts/inverse_validation_table.py) in results/inverse/validation_table.md.
-# Banks and validation ensembles already in results/inverse/ are reused (delete them to redo).
-# About 40 minutes on two cores, most of it the two banks of 2000 records.
+# The inverse estimation's validation (docs/inverse.md, "validation"), in two parts.
+#
+# Issue 11, the ideal device: for each known device of studies/inverse/ (v_b = 10 and 5 m/s),
+# a calibration bank from its [inverse] prior (seeds 1100, 500), 250 validation signals of the
+# same prior drawn as an ensemble with other seeds (2100, 1500), those signals inverted with
+# the bank; table in results/inverse/validation_table.md.
+#
+# Issue 23, real devices: banks of the broadened priors of studies/inverse/device_vb{10,1}_real.toml
+# (seeds 1200, 1300), and eight held-out families of 100 signals each (studies/inverse/validation/,
+# seeds 2101-2108, disjoint from every bank): ideal, unequal loads, staggered onsets, +-5 %
+# parameters, coloured noise with an offset, v_b = 1 m/s, all departures at once, and pure
+# noise. Each is inverted with the broadened bank of its belt velocity; the ideal family also
+# with the ideal bank (today's figures). Table in results/inverse/validation_real_table.md.
+#
+# Banks, signals and inversions already in results/inverse/ are reused (delete them to redo).
+# About 40 minutes for each part on two cores, most of it the banks of 2000 records.
+#   scripts/inverse_validation.sh          both parts
+#   scripts/inverse_validation.sh ideal    issue 11's part only
+#   scripts/inverse_validation.sh real     issue 23's part only
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=./build/src/stengmc
 out=results/inverse
+part=${1:-both}
 mkdir -p "$out"
-args=()
-for device in vb10 vb5; do
-  bank=$out/device_${device}_bank.h5
-  [[ -f $bank ]] || "$bin" calibrate "studies/inverse/device_$device.toml" -o "$bank"
-  signals=$out/validation_$device.h5
-  [[ -f $signals ]] || "$bin" run "studies/inverse/validation_$device.toml" -o "$signals"
-  "$bin" invert "$signals" --known "studies/inverse/device_$device.toml" --bank "$bank" -o "$out/inverted_$device.h5" > "$out/inverted_$device.log"
-  args+=("$signals" "$out/inverted_$device.h5" "$bank")
-done
-/usr/bin/python3 scripts/inverse_validation_table.py "${args[@]}" | tee "$out/validation_table.md"
+
+# bank DEVICE.toml BANK.h5: calibrate unless the bank is there.
+bank() { [[ -f $2 ]] || "$bin" calibrate "$1" -o "$2"; }
+# invert SIGNALS.h5 DEVICE.toml BANK.h5 OUT.h5: invert unless done.
+invert() { [[ -f $4 ]] || "$bin" invert "$1" --known "$2" --bank "$3" -o "$4" > "${4%.h5}.log"; }
+
+if [[ $part == both || $part == ideal ]]; then
+  args=()
+  for device in vb10 vb5; do
+    bank "studies/inverse/device_$device.toml" "$out/device_${device}_bank.h5"
+    signals=$out/validation_$device.h5
+    [[ -f $signals ]] || "$bin" run "studies/inverse/validation_$device.toml" -o "$signals"
+    invert "$signals" "studies/inverse/device_$device.toml" "$out/device_${device}_bank.h5" "$out/inverted_$device.h5"
+    args+=("$signals" "$out/inverted_$device.h5" "$out/device_${device}_bank.h5")
+  done
+  /usr/bin/python3 scripts/inverse_validation_table.py "${args[@]}" | tee "$out/validation_table.md"
+fi
+
+if [[ $part == both || $part == real ]]; then
+  families=$out/families
+  mkdir -p "$families"
+  for vb in 10 1; do bank "studies/inverse/device_vb${vb}_real.toml" "$out/device_vb${vb}_real_bank.h5"; done
+  args=()
+  for family in ideal loads onset tolerance noise vb1 all pure_noise; do
+    vb=10; [[ $family == vb1 || $family == all ]] && vb=1
+    device=studies/inverse/device_vb${vb}_real.toml
+    signals=$families/$family.h5
+    [[ -f $signals ]] || "$bin" run "studies/inverse/validation/$family.toml" -o "$signals" > /dev/null
+    invert "$signals" "$device" "$out/device_vb${vb}_real_bank.h5" "$families/inverted_$family.h5"
+    args+=("$signals" "$families/inverted_$family.h5" "$out/device_vb${vb}_real_bank.h5")
+  done
+  # The ideal family on the ideal device's bank: what a user who assumes the ideal device gets.
+  ln -sf ideal.h5 "$families/ideal_on_ideal_bank.h5"
+  bank studies/inverse/device_vb10.toml "$out/device_vb10_bank.h5"
+  invert "$families/ideal_on_ideal_bank.h5" studies/inverse/device_vb10.toml "$out/device_vb10_bank.h5" \
+    "$families/inverted_ideal_on_ideal_bank.h5"
+  args+=("$families/ideal_on_ideal_bank.h5" "$families/inverted_ideal_on_ideal_bank.h5" "$out/device_vb10_bank.h5")
+  /usr/bin/python3 scripts/inverse_validation_table.py "${args[@]}" | tee "$out/validation_real_table.md"
+fi

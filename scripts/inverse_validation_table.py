@@ -4,13 +4,17 @@
     inverse_validation_table.py VALIDATION.h5 INVERTED.h5 BANK.h5 [VALIDATION2.h5 INVERTED2.h5 BANK2.h5 ...]
 
 Each triple: an ensemble file of validation signals (`stengmc run studies/inverse/
-validation_*.toml`: the truth, in /asperities and /draws), the `stengmc invert` output of the
-same file (records named FILE#realisation_<r>), and the bank the inversion used. Prints a
-Markdown table, by bin of the true count and of the drawn SNR, of
+validation*/...toml`: the truth, in /asperities and /draws), the `stengmc invert` output of the
+same file (records named FILE#realisation_<r>), and the bank the inversion used. A triple's
+family is its validation file's name without `.h5` (the family of issue 23's validation:
+ideal, loads, onset, tolerance, noise, vb1, all, pure_noise). Prints Markdown tables, by
+family, by bin of the true count and of the drawn SNR, of
   n RMSE, exact rate, coverage of the 90 % interval of n, the median absolute relative
   error of the median k, the RMSE of sd(ln k) (records with >= 2 true and identified lines),
-  the coverage of the median's and sd's 90 % intervals, and beside them the naive FFT count's
-  RMSE and exact rate on the same signals;
+  the coverage of the median's and sd's 90 % intervals, the coverage of each line's 90 %
+  interval of k (records whose count is right: lines and truth paired in order of k), the
+  share of wrong and of right counts that carry a warning, and beside them the naive FFT
+  count's RMSE and exact rate on the same signals;
 then what a randomised (smoothed) conformal set for n would cover (Vovk, Gammerman & Shafer
 2005, ch. 2: ties broken by a uniform draw), from the banks' own records.
 
@@ -38,7 +42,7 @@ def truth(path):
         offset = f["realisations/asperity_offset"][:]
         k = f["asperities/stiffness_n_per_m"][:]
         names = [text(p) for p in f["draws/parameter"][:]]
-        snr = f["draws/values"][:, names.index("noise.snr_db")]
+        snr = f["draws/values"][:, names.index("noise.snr_db")] if "noise.snr_db" in names else np.full(len(ids), np.nan)
     return {int(r): (k[offset[j]:offset[j + 1]], snr[j]) for j, r in enumerate(ids) if valid[j]}
 
 
@@ -89,6 +93,7 @@ def main(argv):
     rows = []
     smoothed = []
     for validation, inverted, bank in zip(argv[0::3], argv[1::3], argv[2::3]):
+        family = re.sub(r"\.h5$", "", validation.rsplit("/", 1)[-1])
         truths = truth(validation)
         scores, cmin = bank_scores(bank)
         calibration_scores = [1.0 - p[i] for p, i in scores]
@@ -103,6 +108,10 @@ def main(argv):
             med_lo, med_hi = f["inverse/stiffness/median_low"][:], f["inverse/stiffness/median_high"][:]
             sd = f["inverse/stiffness/sd_log"][:]
             sd_lo, sd_hi = f["inverse/stiffness/sd_log_low"][:], f["inverse/stiffness/sd_log_high"][:]
+            line_record = f["inverse/lines/record"][:]
+            line_k = f["inverse/lines/stiffness_n_per_m"][:]
+            line_lo, line_hi = f["inverse/lines/stiffness_low"][:], f["inverse/lines/stiffness_high"][:]
+            warned = [bool(text(w).strip()) for w in f["inverse/records/warnings"][:]]
             vb = float(re.search(r"belt_velocity_m_per_s = ([0-9.eE+-]+)", text(f.attrs["input_text"])).group(1))
         for j, name in enumerate(names):
             r = int(name.rsplit("realisation_", 1)[1])
@@ -110,11 +119,21 @@ def main(argv):
                 continue
             k, snr = truths[r]
             n = len(k)
-            m_true, s_true = float(np.median(k)), sd_log(k)
-            rows.append(dict(vb=vb, n=n, snr=snr, est=int(est[j]), low=int(low[j]), high=int(high[j]), naive=naive[j],
-                             med_err=abs(med[j] / m_true - 1.0), med_cover=med_lo[j] <= m_true <= med_hi[j],
+            m_true, s_true = (float(np.median(k)), sd_log(k)) if n else (float("nan"), float("nan"))
+            lines = line_record == j
+            line_cover = []
+            if est[j] == n and n > 0:  # pair the identified lines with the truth in order of k
+                order = np.argsort(line_k[lines])
+                lo_sorted, hi_sorted = line_lo[lines][order], line_hi[lines][order]
+                line_cover = [bool(a <= kt <= b) for a, kt, b in zip(lo_sorted, np.sort(k), hi_sorted)]
+            rows.append(dict(family=family, vb=vb, n=n, warned=warned[j], line_cover=line_cover, snr=snr, est=int(est[j]), low=int(low[j]), high=int(high[j]), naive=naive[j],
+                             med_ok=n > 0 and est[j] > 0,
+                             med_err=abs(med[j] / m_true - 1.0) if n else float("nan"), med_cover=med_lo[j] <= m_true <= med_hi[j],
                              sd_ok=n >= 2 and est[j] >= 2, sd_err=sd[j] - s_true, sd_cover=sd_lo[j] <= s_true <= sd_hi[j]))
             smoothed.append(smoothed_set_covers(prob[j], n - cmin, calibration_scores))
+
+    def share(values):
+        return f"{np.mean(values):.3f}" if len(values) else "–"
 
     def line(label, keep):
         sel = [r for r in rows if keep(r)]
@@ -123,19 +142,33 @@ def main(argv):
         e = np.array([r["est"] - r["n"] for r in sel])
         cover = np.mean([r["low"] <= r["n"] <= r["high"] for r in sel])
         ne = np.array([r["naive"] - r["n"] for r in sel])
+        medsel = [r for r in sel if r["med_ok"]]
+        med_err = f"{np.median([r['med_err'] for r in medsel]):.2e}" if medsel else "–"
         sdsel = [r for r in sel if r["sd_ok"]]
-        sd_rmse = np.sqrt(np.mean([r["sd_err"] ** 2 for r in sdsel])) if sdsel else float("nan")
-        sd_cover = np.mean([r["sd_cover"] for r in sdsel]) if sdsel else float("nan")
+        sd_rmse = f"{np.sqrt(np.mean([r['sd_err'] ** 2 for r in sdsel])):.4f}" if sdsel else "–"
+        lines = [c for r in sel for c in r["line_cover"]]
+        wrong = [r["warned"] for r in sel if r["est"] != r["n"]]
+        right = [r["warned"] for r in sel if r["est"] == r["n"]]
         print(f"| {label} | {len(sel)} | {np.sqrt(np.mean(e ** 2)):.3f} | {100 * np.mean(e == 0):.1f} % | {cover:.3f} | "
-              f"{np.median([r['med_err'] for r in sel]):.2e} | {np.mean([r['med_cover'] for r in sel]):.3f} | "
-              f"{sd_rmse:.4f} | {sd_cover:.3f} | {np.sqrt(np.mean(ne ** 2)):.2f} | {100 * np.mean(ne == 0):.1f} % |")
+              f"{med_err} | {share([r['med_cover'] for r in medsel])} | "
+              f"{sd_rmse} | {share([r['sd_cover'] for r in sdsel])} | {share(lines)} | {share(wrong)} | {share(right)} | "
+              f"{np.sqrt(np.mean(ne ** 2)):.2f} | {100 * np.mean(ne == 0):.1f} % |")
 
-    print("| bin | signals | n RMSE | exact | 90 % interval of n covers | median k: median abs. rel. error | "
-          "its 90 % interval covers | sd(ln k) RMSE | its 90 % interval covers | naive FFT count: n RMSE | naive exact |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    header = ("| {} | signals | n RMSE | exact | 90 % interval of n covers | median k: median abs. rel. error | "
+              "its 90 % interval covers | sd(ln k) RMSE | its 90 % interval covers | each line's 90 % k interval covers | "
+              "warned: wrong counts | warned: right counts | naive FFT count: n RMSE | naive exact |")
+    rule = "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    print(header.format("family"))
+    print(rule)
     line("all", lambda r: True)
+    for family in dict.fromkeys(r["family"] for r in rows):
+        line(family, lambda r, family=family: r["family"] == family)
+    print()
+    print(header.format("bin"))
+    print(rule)
     for vb in sorted({r["vb"] for r in rows}, reverse=True):
         line(f"v_b = {vb:g} m/s", lambda r, vb=vb: r["vb"] == vb)
+    line("n = 0", lambda r: r["n"] == 0)
     for lo, hi in ((1, 4), (5, 8), (9, 12), (13, 16)):
         line(f"n {lo}-{hi}", lambda r, lo=lo, hi=hi: lo <= r["n"] <= hi)
     line("SNR 20-30 dB", lambda r: r["snr"] < 30)

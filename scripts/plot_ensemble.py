@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Figures of `stengmc run` ensemble output files (file_type "stengmc-ensemble"), as PNG beside each file.
+"""Figures of `stengmc run` ensemble output files (file_type "stengmc-ensemble"), beside each file
+(PNG, or --figure-format pdf|svg; --dpi).
 
     plot_ensemble.py ENSEMBLE.h5 [ENSEMBLE2.h5 ...]
 
@@ -31,14 +32,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import array, attribute  # noqa: E402
+from figure_style import log_axis, unit as fixed_unit  # noqa: E402
+from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figure, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
-from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter, NullLocator  # noqa: E402
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
 FILE_TYPE = "stengmc-ensemble"
-US = 1e6  # s -> us
+US = fixed_unit("s")[0]  # s -> µs
 
 # Units of sweep parameters, from the suffix of their study-file key (README: keys say
 # their unit); a key without one is dimensionless or in the unit its section documents.
@@ -69,15 +71,19 @@ def parameter_label(parameter):
     return name
 
 
-def si_scale(values, unit):
-    """(factor, label) putting the largest |value| between 1 and 1000: 0.02 V -> (1e3, "mV")."""
-    finite = np.abs(np.asarray(values, float))
-    finite = finite[np.isfinite(finite) & (finite > 0)]
-    if not finite.size:
-        return 1.0, unit
-    exponent = int(np.clip(3 * math.floor(math.log10(finite.max()) / 3), -15, 12))
-    prefix = {-15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G", 12: "T"}[exponent]
-    return 10.0 ** -exponent, prefix + unit
+def parameter_value(parameter, value):
+    """belt_velocity_m_per_s, 10 -> "belt_velocity = 10 m/s": the unit after the number."""
+    name = short(parameter)
+    for suffix, unit_text in PARAMETER_UNITS:
+        if name.endswith(suffix) and suffix != "count":
+            return f"{name[: -len(suffix)]} = {value:g} {unit_text}"
+    return f"{name} = {value:g}"
+
+
+def si_scale(values, si_unit):
+    """(factor, label) of the quantity's unit: fixed per quantity across all stengmc figures
+    (figure_style.UNITS: V in mV, Q in fC), so an ensemble figure reads as a run figure."""
+    return fixed_unit(si_unit)
 
 
 def fmt(value):
@@ -216,15 +222,6 @@ class Ensemble:
         if self.title:
             lines.append(self.title)
         return "\n".join(w for line in lines for w in textwrap.wrap(line, 130))
-
-
-def log_axis(ax, axis="y"):
-    """Log scale labelled at 1, 2, 3, 5 × 10^k in plain numbers (the data span one or two decades)."""
-    (ax.set_yscale if axis == "y" else ax.set_xscale)("log")
-    which = ax.yaxis if axis == "y" else ax.xaxis
-    which.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 3.0, 5.0)))
-    which.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    which.set_minor_formatter(NullFormatter())
 
 
 def wants_log(values):
@@ -459,7 +456,7 @@ def trace_panel(ax, e):
     ax.legend(fontsize=7, loc="best")
 
 
-def plot_overview(e, out):
+def overview_figure(e):
     size = (13, 8.6) if e.G == 1 else (min(30, max(13, 0.75 * e.G + 5)), 9.2)
     fig, axes = plt.subplots(2, 2, figsize=size)
     axes = axes.ravel()
@@ -475,8 +472,7 @@ def plot_overview(e, out):
         ax.set_title(f"({letter}) " + ax.get_title(), fontsize=9)
     fig.suptitle(e.suptitle(""), fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 # ---------------------------------------------------------------- <stem>_sweep.png
@@ -503,7 +499,7 @@ def lines(e, axis):
         groups.setdefault(tuple(e.grid[g, i] for i in others), []).append(g)
     result = []
     for key, points in groups.items():
-        label = ", ".join(f"{short(e.parameters[i])} = {v:g}" for i, v in zip(others, key))
+        label = ", ".join(parameter_value(e.parameters[i], v) for i, v in zip(others, key))
         result.append((label, sorted(points, key=lambda g: e.grid[g, axis])))
     return result
 
@@ -561,7 +557,7 @@ def identifiability_legend(ax, e, groups, colors, esprit, untrusted, counts):
                   fontsize=7, loc="upper right")
 
 
-def plot_sweep(e, out):
+def sweep_figure(e):
     axis = x_axis(e)
     x_name = e.parameters[axis]
     groups = lines(e, axis)
@@ -635,35 +631,44 @@ def plot_sweep(e, out):
         ax.set_title(f"({letter}) " + ax.get_title(), fontsize=9)
     fig.suptitle(e.suptitle(" sweep"), fontsize=10)
     fig.tight_layout(rect=(0, 0.025 * (len(notes) + 1) if notes else 0, 1, 1))
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    return fig
 
 
-def plot_ensemble(path):
-    """Writes <stem>.png (and <stem>_sweep.png for a sweep) beside `path`; returns their names."""
+def figures(path):
+    """[(output path, Figure)] of the ensemble file `path`, not yet written: <stem>.png and,
+    for a sweep, <stem>_sweep.png; [] when it records no realisation."""
     f = open_stengmc_file(path, FILE_TYPE, "stengmc ensemble output file")
     e = Ensemble(f, path)
     if e.point.size == 0:
         print(f"{path}: no realisations recorded (/realisations is empty or missing); no figure written")
         return []
     stem = os.path.splitext(path)[0]
-    written = [stem + ".png"]
-    plot_overview(e, written[0])
+    found = [(figure_path(stem), overview_figure(e))]
     if e.G > 1:
         if e.parameters:
-            written.append(stem + "_sweep.png")
-            plot_sweep(e, written[1])
+            found.append((figure_path(stem + "_sweep"), sweep_figure(e)))
         else:
             print(f"{path}: {e.G} grid points but no readable /grid; no sweep figure")
-    for out in written:
+    return found
+
+
+def plot_ensemble(path):
+    """Writes the figures of `path` beside it; returns their names."""
+    written = []
+    for out, fig in figures(path):
+        save_figure(fig, out)
+        plt.close(fig)
         print(f"figure: {out}")
+        written.append(out)
     return written
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("files", nargs="+", help="HDF5 files written by `stengmc run` for an [ensemble] study")
+    add_output_options(parser)
     args = parser.parse_args()
+    use_output_options(args)
     for path in args.files:
         plot_ensemble(path)
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Figure of a `stengmc invert` output file (file_type "stengmc-inverse"), as PNG beside it.
+"""Figure of a `stengmc invert` output file (file_type "stengmc-inverse"), beside it
+(PNG, or --figure-format pdf|svg; --dpi).
 
     plot_inverse.py INVERSE.h5 [--record I]
 
@@ -7,7 +8,7 @@
   (a) the record's amplitude spectrum (Hann window) with the fitted model's spectrum and the
       identified lines (their 90 % intervals as bands), the naive FFT count in the legend;
   (b) P(n), the calibrated posterior of the number of sliding asperities (the raw one as
-      outlines), the 90 % interval shaded;
+      outlines), the 90 % interval shaded, on a linear axis with each value written;
   (c) the fitted stiffness law (best by AIC; of all records pooled when there are several)
       over the identified k_i of the record (ticks with their 90 % intervals).
 
@@ -26,7 +27,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
-from stengmc_h5 import attribute  # noqa: E402
+from figure_style import log_axis  # noqa: E402
+from stengmc_h5 import add_output_options, attribute, figure_path, save_figure, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 
 FILE_TYPE = "stengmc-inverse"
@@ -52,7 +54,26 @@ def spectrum(v, dt, padding=4):
     return np.fft.rfftfreq(padding * len(v), dt), a
 
 
-def plot_inverse(path, record=0):
+def count_panel(ax, counts, p, raw, low, high, calibrated):
+    """P(n) on a linear axis, each non-zero probability written above its bar: on a log axis
+    bars have no base, and a 0.004 beside a 0.99 is invisible on a linear one without it."""
+    ax.axvspan(low - 0.5, high + 0.5, color="C2", alpha=0.15, label="90 % interval")
+    ax.bar(counts, p, color="C2", width=0.7, label="P(n), calibrated" if calibrated else "P(n), raw (no bank)")
+    if calibrated:
+        ax.bar(counts, raw, width=0.7, fill=False, edgecolor="k", lw=0.7, label="raw posterior")
+    for n, value in zip(counts, p):
+        if value > 0:
+            ax.text(n, value + 0.02, f"{value:.2g}", ha="center", va="bottom", fontsize=7, rotation=90)
+    ax.set_ylim(0, 1.18)
+    ax.set_xticks(counts)
+    ax.set_xlabel("number of sliding asperities n")
+    ax.set_ylabel("probability [1]")
+    # Below the axes: every part of the panel may hold a bar.
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
+
+
+def inverse_figure(path, record=0):
+    """The Figure of record `record` of the inverse file `path` (see the module's docstring)."""
     f = open_stengmc_file(path, FILE_TYPE, "`stengmc invert` output file")
     names = [text(n) for n in f["inverse/records/name"][:]]
     if record >= len(names):
@@ -96,17 +117,9 @@ def plot_inverse(path, record=0):
     raw = f["inverse/count/raw_probability"][record]
     low, high = f["inverse/count/interval_low"][record], f["inverse/count/interval_high"][record]
     ax = axes[1]
-    ax.axvspan(low - 0.5, high + 0.5, color="C2", alpha=0.15, label="90 % interval")
     calibrated = int(f.attrs.get("calibrated", 0)) == 1
-    ax.bar(counts, p, color="C2", width=0.7, label="P(n), calibrated" if calibrated else "P(n), raw (no bank)")
-    if calibrated:
-        ax.bar(counts, raw, width=0.7, fill=False, edgecolor="k", lw=0.7, label="raw posterior")
-    ax.set_yscale("log")
-    ax.set_ylim(max(1e-4, min(p[p > 0].min(), 0.5) / 2), 1.5)
-    ax.set_xlabel("number of sliding asperities n")
-    ax.set_ylabel("probability")
+    count_panel(ax, counts, p, raw, low, high, calibrated)
     ax.set_title(f"(b) n = {f['inverse/count/estimate'][record]}")
-    ax.legend(fontsize=8, loc="lower right")
 
     # (c) the stiffness law over the identified k
     ax = axes[2]
@@ -127,7 +140,7 @@ def plot_inverse(path, record=0):
     for i in range(len(k)):
         ax.plot([k_low[i], k_high[i]], [0.03 * top] * 2, color="C3", lw=3, alpha=0.5)
         ax.plot([k[i]], [0.03 * top], "|", color="C3", ms=12)
-    ax.set_xscale("log")
+    log_axis(ax, "x")
     ax.set_xlabel("stiffness k [N/m]")
     ax.set_ylabel("probability density [m/N]")
     med = f["inverse/stiffness/median"][record]
@@ -144,17 +157,28 @@ def plot_inverse(path, record=0):
         title += "\n" + "\n".join(textwrap.wrap("WARNING: " + warnings, 160))
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
-    out = os.path.splitext(path)[0] + ".png"
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-    print(out)
+    return fig
+
+
+def figures(path, record=0):
+    """[(output path, Figure)] of the inverse file `path`, not yet written."""
+    return [(figure_path(os.path.splitext(path)[0]), inverse_figure(path, record))]
+
+
+def plot_inverse(path, record=0):
+    for out, fig in figures(path, record):
+        save_figure(fig, out)
+        plt.close(fig)
+        print(out)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file")
     parser.add_argument("--record", type=int, default=0)
+    add_output_options(parser)
     args = parser.parse_args()
+    use_output_options(args)
     plot_inverse(args.file, args.record)
 
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Figures of `stengmc surface` output files (file_type "stengmc-surface"), as PNG beside each file.
+"""Figures of `stengmc surface` output files (file_type "stengmc-surface"), beside each file
+(PNG, or --figure-format pdf|svg; --dpi).
 
     plot_surface.py SURFACE.h5 [SURFACE2.h5 ...]    one multi-panel figure, <stem>.png
 
@@ -23,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import array, attribute  # noqa: E402
+from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figure, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
@@ -34,7 +35,7 @@ except ImportError:  # pragma: no cover
     tomllib = None
 
 FILE_TYPE = "stengmc-surface"
-UM = 1e6  # m -> um
+UM = 1e6  # m -> µm
 MN = 1e3  # N -> mN
 
 
@@ -89,7 +90,7 @@ def ks_distance(sample, grid, pdf):
 
 def draw_law(ax, sample, target, scale, unit, what, contact_sample=None):
     """Histogram of `sample` (SI) against a target law group (pdf on a grid or point
-    probabilities), in units of 1/scale of SI (scale = 1e6 for um)."""
+    probabilities), in units of 1/scale of SI (scale = 1e6 for µm)."""
     n = sample.size
     discrete = target is not None and int(target.attrs.get("discrete", 0)) == 1
     x = sample * scale
@@ -100,8 +101,12 @@ def draw_law(ax, sample, target, scale, unit, what, contact_sample=None):
         frequency = counts / n
         # Bar width from the spacing of the support; a single value (a fixed height) has none.
         support = np.unique(np.concatenate([values, seen]))
-        spacing = np.min(np.diff(support)) if support.size > 1 else max(abs(support[0]) * 0.1, 1.0)
+        spacing = np.min(np.diff(support)) if support.size > 1 else max(abs(support[0]) * 0.01, 1e-3)
         width = 0.35 * spacing
+        if support.size == 1:  # a fixed value: two bars of probability 1 say nothing more
+            ax.text(0.5, 0.55, f"every {what[:-1]} at {support[0]:.4g} {unit.strip('()')},\nas the target law (a single value)",
+                    transform=ax.transAxes, ha="center", va="center", fontsize=9)
+            ax.set_xlim(support[0] - 5 * spacing, support[0] + 5 * spacing)
         ax.bar(seen - width / 2, frequency, width=width, color="C0", alpha=0.7, label=f"sample frequency ({n} {what})")
         ax.bar(values + width / 2, probability, width=width, color="C3", alpha=0.7, label="target probability")
         # Expected frequency at the listed values: deviation in binomial standard deviations.
@@ -229,7 +234,7 @@ def panel_positions(fig, ax, f, d):
     # Equal loads (a discrete height law, a fixed load) need no colour scale.
     equal = n_contact > 0 and np.ptp(load[contact]) <= 1e-9 * np.max(np.abs(load[contact]))
     if n_contact and radius.size and np.any(radius[contact] > 0):
-        # Real patches are a few um on a square of hundreds: enlarge them by a round factor
+        # Real patches are a few µm on a square of hundreds: enlarge them by a round factor
         # until the median patch spans ~0.6 % of the side, and say so.
         factor = nice_factor(0.006 * side / np.median(radius[contact]))
         circles = [Circle((cx, cy), r * factor) for cx, cy, r in zip(x[contact], y[contact], radius[contact])]
@@ -354,9 +359,9 @@ def collect(f):
     return d
 
 
-def plot_surface(path):
-    """Writes <stem>.png beside `path` and returns its name; None when the file has nothing
-    to plot (a fixed asperity list draws no summits)."""
+def figures(path):
+    """[(output path, Figure)] of the surface file `path`, not yet written: <stem>.png, or
+    nothing when the file has nothing to plot (a fixed asperity list draws no summits)."""
     f = open_stengmc_file(path, FILE_TYPE, "`stengmc surface` output file")
     d = collect(f)
     panels = []
@@ -375,7 +380,7 @@ def plot_surface(path):
         why = ("the realisations drew no summits" if "target/heights/value" in f
                else "no sampled summits: a fixed asperity list draws none")
         print(f"{path}: nothing to plot for {input_file} ({why}); no figure written")
-        return None
+        return []
     panels.append("summary")
     columns = len(panels) if len(panels) < 3 else 2 if len(panels) == 4 else 3
     rows = math.ceil(len(panels) / columns)
@@ -407,17 +412,25 @@ def plot_surface(path):
         title += f"\n{surface_title}"
     fig.suptitle("\n".join(w for line in title.split("\n") for w in textwrap.wrap(line, 130)), fontsize=10)
     fig.tight_layout()
-    out = os.path.splitext(path)[0] + ".png"
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-    print(f"figure: {out}")
-    return out
+    return [(figure_path(os.path.splitext(path)[0]), fig)]
+
+
+def plot_surface(path):
+    """Writes the figure of `path` beside it and returns its name; None when there is none."""
+    for out, fig in figures(path):
+        save_figure(fig, out)
+        plt.close(fig)
+        print(f"figure: {out}")
+        return out
+    return None
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("files", nargs="+", help="HDF5 files written by `stengmc surface`")
+    add_output_options(parser)
     args = parser.parse_args()
+    use_output_options(args)
     for path in args.files:
         plot_surface(path)
 

@@ -2,6 +2,7 @@
 import os
 
 from . import _core
+from .arguments import MAX_REALISATION, whole_number
 from .results import Ensemble, Run
 from .toml_text import toml_text
 
@@ -22,12 +23,14 @@ class Study:
         return getattr(self._study, name)
 
     def run(self, realisation=0, progress=False):
-        """Runs one realisation (as `stengmc run --realisation R`); a Run."""
+        """Runs one realisation (as `stengmc run --realisation R`, 0 <= R < 2**63); a Run."""
+        realisation = whole_number("realisation", realisation, 0, MAX_REALISATION)
         return Run(_core.run(self._study, realisation, progress))
 
     def run_ensemble(self, threads=0, progress=False):
-        """Runs every realisation of the [ensemble] (0 threads: every core); an Ensemble.
-        The records are the same for any number of threads."""
+        """Runs every realisation of the [ensemble] (0 threads: every core; at most
+        _core.MAX_THREADS, 1024); an Ensemble. The records are the same for any number of threads."""
+        threads = whole_number("threads", threads, 0, _core.MAX_THREADS)
         return Ensemble(_core.run_ensemble(self._study, threads, progress))
 
     def __repr__(self):

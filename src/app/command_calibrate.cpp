@@ -5,8 +5,10 @@
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
+#include "app/validators.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "ensemble/process_world.hpp"
 #include "inverse/calibration_run.hpp"
 #include "io/calibration_bank_file.hpp"
@@ -99,7 +101,9 @@ void run(const CalibrateOptions& options) {
   }
   if (const auto folder = std::filesystem::path(out).parent_path(); !folder.empty()) std::filesystem::create_directories(folder);
   write_calibration_bank(out, bank);
-  std::filesystem::remove(journal);
+  // The journal of this run, now in the bank; --refit ran none, and what sits at its path
+  // (an interrupted calibration's journal, or anything else) is not its to remove.
+  if (!options.refit) std::filesystem::remove(journal);
 
   const std::size_t invalid = bank.samples.size() - bank.maps.records;
   std::printf("  atoms: %zu shapes over Pi %.3g-%.3g (belt-carried stretch) and zeta %.2g-%.2g, worst check against the "
@@ -131,8 +135,9 @@ void add_calibrate_command(CLI::App& app) {
   command->add_option("study", options->study_file, "The known device's study file, with its [inverse] prior")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Bank file (default results/<study>_bank.h5)");
-  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  command->add_option("-o,--out", options->out, "Bank file (default results/<study>_bank.h5)")
+      ->check(non_empty_path());
+  command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   command->add_flag("--restart", options->restart, "Discard an interrupted calibration's journal instead of resuming it");
   command->add_option("--records", options->records, "Simulated records (default: [inverse] calibration_records)")
       ->check(CLI::Range(50LL, 1000000LL));

@@ -108,7 +108,9 @@ void add_circuit_command(CLI::App& app) {
   command->add_option("input", options->input, "IN.h5 (/time, /asperity/x, /asperity/{sigma,d0,w,l}) or IN.csv")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file")->required();
+  command->add_option("-o,--out", options->out, "Output HDF5 file")
+      ->required()
+      ->check(non_empty_path());
   command->add_option("-R,--load-resistance", options->params.load_resistance_ohm, "Load resistance [Ohm]")
       ->required()
       ->check(finite_number(false));

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -147,10 +148,16 @@ void run_ensemble_study(const StudyFile& study, const std::string& out_option, b
                   "is the same run and the intervals have zero width\n");
   }
   std::fflush(stdout);
+  const auto job_start = std::chrono::steady_clock::now();
   for (std::size_t g = 0; g < grid.size(); ++g) {
     EnsembleOptions run_options{.threads = options.threads, .only = options.only, .restart = options.restart,
                                 .show_progress = root, .limits = options.limits, .shard = options.shard};
-    if (grid.size() > 1) run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
+    if (grid.size() > 1) {
+      run_options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
+      run_options.job_start = job_start;
+      run_options.job_before = static_cast<double>(g) / static_cast<double>(grid.size());
+      run_options.job_share = 1.0 / static_cast<double>(grid.size());
+    }
     grid[g].run = run_ensemble(grid[g].study, journal_path(out, g, grid.size()), run_options);
     if (root && !options.shard) grid[g].summary = summarise_ensemble(grid[g].run.records, study.seed);
   }

@@ -54,7 +54,8 @@ void add_export_netlist_command(CLI::App& app) {
       "export-netlist", "Run a study's tribology and write its S-TENG elements, driven by their x(t) as PWL sources,\n"
                         "on the study's load as an ngspice / LTspice netlist (port node: steng)");
   command->add_option("study", options->study_file, "Study file (TOML)")->required();
-  command->add_option("-o,--out", options->out, "Output netlist (default: results/<study>.cir)");
+  command->add_option("-o,--out", options->out, "Output netlist (default: results/<study>.cir)")
+      ->check(non_empty_path());
   command->add_option("-r,--realisation", options->realisation, "Realisation of a random surface (default 0)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   add_limit_options(command, options->limits);

@@ -9,10 +9,12 @@
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
+#include "app/validators.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/input_file.hpp"
 #include "core/progress.hpp"
+#include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "inverse/calibration_run.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/inversion_work.hpp"
@@ -220,9 +222,11 @@ void add_invert_command(CLI::App& app) {
   command->add_option("-b,--bank", options->bank,
                       "Calibration bank from stengmc calibrate (default results/<known>_bank.h5 if it exists)")
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (/inverse)")->required();
+  command->add_option("-o,--out", options->out, "Output HDF5 file (/inverse)")
+      ->required()
+      ->check(non_empty_path());
   command->add_flag("-f,--figures", options->figures, "Also render the PNG figure (spectrum with the fitted lines, P(n), stiffness law)");
-  command->add_option("-j,--threads", options->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }

@@ -7,6 +7,7 @@
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "ensemble/ensemble_runner.hpp"
 #include "ensemble/ensemble_summary.hpp"
 #include "ensemble/shard.hpp"
@@ -25,6 +26,12 @@ struct MergeOptions {
 };
 
 void merge(const MergeOptions& options) {
+  // Each shard is checked (a regular file: a FIFO would block the merge for ever) and read
+  // whole into memory, so together they must fit the memory limit.
+  WorkEstimate reading;
+  for (const std::string& path : options.shards)
+    reading.add_memory("the shard file " + path, static_cast<double>(check_input_file(path, "a shard file")));
+  check_work(reading, options.limits.limits(), "merge: reading the shards");
   std::vector<ShardFile> shards;
   for (const std::string& path : options.shards) shards.push_back(read_shard_file(path));
   check_shard_set(shards);
@@ -60,7 +67,8 @@ void add_merge_command(CLI::App& app) {
   command->add_option("shards", options->shards, "The shard files, all n of them, each once")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (default: the study's [output] file)");
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: the study's [output] file)")
+      ->check(non_empty_path());
   command->add_option("--study", options->study,
                       "The study file, if it is no longer where the shard runs read it (it must be the same text)")
       ->check(CLI::ExistingFile);

@@ -6,8 +6,10 @@
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
 #include "core/error.hpp"
+#include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "ensemble/process_world.hpp"
 #include "ensemble/shard.hpp"
+#include "inverse/inverse_prior.hpp"
 #include "io/run_file.hpp"
 #include "pipeline/study.hpp"
 #include "pipeline/run_study.hpp"
@@ -59,6 +61,9 @@ void run(const RunOptions& options) {
   const std::optional<ShardSpec> shard =
       options.shard.empty() ? std::nullopt : std::optional<ShardSpec>(parse_shard_spec(options.shard));
   const StudyFile base = read_study_file(options.study_file, std::nullopt);
+  // [inverse] plays no part in a run, but a misspelt key there must not pass unseen: the
+  // same study goes to calibrate and invert, which would refuse it only then.
+  (void)inverse_prior_of_study(base.text, base.file);
   if (base.ensemble && !options.realisation_given) {
     EnsembleCommandOptions ensemble = options.ensemble;
     ensemble.limits = options.limits.limits();
@@ -91,16 +96,17 @@ void add_run_command(CLI::App& app) {
   command->add_option("study", options->study_file, "Study file (TOML; see studies/ and docs/study-files.md)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)");
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: [output] file, else results/<study>.h5)")
+      ->check(non_empty_path());
   CLI::Option* realisation = command->add_option(
       "-r,--realisation", options->realisation,
       "Run this one realisation of a random surface and write its full run file (also for an [ensemble] "
       "study; default 0, and an ensemble study without it runs the ensemble)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
-  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (0: OMP_NUM_THREADS or every core)")
+  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (default 0: OMP_NUM_THREADS when set, else every core)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
+      ->check(CLI::Range(0, MAX_THREADS));
   command->add_option("--only", options->ensemble.only,
                       "Ensemble: run realisation R alone into an ensemble file (to check it against a batch)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));

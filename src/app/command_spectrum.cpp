@@ -100,7 +100,9 @@ void add_spectrum_command(CLI::App& app) {
   command->add_option("input", options->input, "A stengmc output file (uses /time, /circuit/voltage, ...) or IN.csv")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (/spectrum, /spectrogram)")->required();
+  command->add_option("-o,--out", options->out, "Output HDF5 file (/spectrum, /spectrogram)")
+      ->required()
+      ->check(non_empty_path());
   command->add_option("-s,--settings", options->settings_file, "A study or TOML file whose [spectrum] table to use (default: the defaults)")
       ->check(CLI::ExistingFile);
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures");

@@ -110,7 +110,8 @@ void add_surface_command(CLI::App& app) {
   command->add_option("--study", options->study_file,
                       "Take the Model 1 / Model 2 parameters of the validity checks from this study file")
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--out", options->out, "Output HDF5 file (default: results/<surface>_surface.h5)");
+  command->add_option("-o,--out", options->out, "Output HDF5 file (default: results/<surface>_surface.h5)")
+      ->check(non_empty_path());
   command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });

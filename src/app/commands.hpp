@@ -38,7 +38,14 @@ void run_ensemble_study(const stengmc::StudyFile& study, const std::string& out,
 //! The summary table (one point) or grid table (a sweep) and the target lines of a run grid.
 void print_ensemble_results(const stengmc::StudyFile& study, const std::vector<GridPoint>& grid, bool only);
 
-//! Renders the figures of an output file with scripts/plot_run.py; returns the PNG paths printed.
-int render_figures(const std::string& h5_path);
+//! How the figure scripts write: `format` png, pdf or svg, `dpi` in 20..1200 (the
+//! scripts' --figure-format and --dpi; stengmc_h5.py has the same defaults).
+struct FigureOptions {
+  std::string format = "png";
+  int dpi = 150;
+};
+
+//! Renders the figures of an output file with scripts/plot_run.py; returns its exit status.
+int render_figures(const std::string& h5_path, const FigureOptions& options = {});
 
 }  // namespace stengmc::app

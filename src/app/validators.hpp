@@ -24,4 +24,14 @@ inline CLI::Validator finite_number(bool allow_zero) {
       allow_zero ? "NUMBER >= 0" : "NUMBER > 0");
 }
 
+//! A path that is not empty: `-o ""` (an unset shell variable) would otherwise mean "the
+//! default output", written silently where the user did not ask.
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty path: give the path of the file to write, or leave the option out for the default" : "";
+      },
+      "PATH");
+}
+
 }  // namespace stengmc::app

@@ -26,6 +26,8 @@ struct CircuitResult {
   //! integral of i_i dt from the first time, [element][sample] [C]; Q_i(t) - Q_i(t0) with
   //! Q_i = sigma_i w_i x_i - C_i V, and sum_i = Q + C_L V
   std::vector<std::vector<double>> element_charge_c;
+  //! A netlist's probes ([circuit] probes), in the study's order, on the same samples [V or A]
+  std::vector<std::vector<double>> probes;
 };
 
 //! Solves (sum C_i + C_L) dV/dt = sum sigma_i w_i x_i' + V sum(eps0 w_i x_i'/d0_i) - V/R

@@ -150,6 +150,11 @@ NetlistCircuitRun solve_netlist_circuit(std::span<const StengElement> elements, 
   for (std::size_t k = 1; k < time.size(); ++k)
     charge[k] = charge[k - 1] + 0.5 * (current[k] + current[k - 1]) * (time[k] - time[k - 1]);
   run.circuit.charge_c = resample(time, charge, grid);
+  const std::size_t first_extra = 2 + (element_traces ? elements.size() : 0);
+  for (std::size_t p = 0; p < extra_vectors.size(); ++p) {
+    run.circuit.probes.push_back(resample(time, run.raw.values[first_extra + p], grid));
+    check_finite(run.circuit.probes.back(), times, extra_vectors[p], load.file);
+  }
   check_finite(run.circuit.voltage_v, times, "port voltage", load.file);
   check_finite(run.circuit.charge_c, times, "port charge", load.file);
   if (element_traces) {

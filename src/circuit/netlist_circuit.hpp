@@ -23,7 +23,8 @@ struct NetlistCircuitRun {
 //! Runs the elements driven by their motions, in parallel between the port node
 //! (STENG_PORT_NODE) and ground, on `load`, from times.front() to times.back(), and
 //! resamples onto `times`. With `element_traces` also every element's current and its
-//! delivered charge Q_i(t) - Q_i(t0) (Q_i = sigma w x - C_i V, exact given V). ngspice runs
+//! delivered charge Q_i(t) - Q_i(t0) (Q_i = sigma w x - C_i V, exact given V), and each of
+//! `extra_vectors` (ngspice vector names, e.g. NetlistProbe::vector) in circuit.probes. ngspice runs
 //! in a child process under `budget` (circuit/ngspice_library.hpp).
 //! @throws InputError naming the netlist file when ngspice rejects it, its run fails, it
 //!         crashes or it exceeds the budget

@@ -58,7 +58,8 @@ enum Frame : char {
   FRAME_MESSAGE = 'm',   //!< a line ngspice wrote to stderr
   FRAME_PROGRESS = 'p',  //!< the transient's progress, a double in [0, 1]
   FRAME_RESULT = 'r',    //!< the vectors: count, then per vector its length and values
-  FRAME_ERROR = 'e',     //!< stengmc's own message when the run failed
+  FRAME_ERROR = 'e',     //!< stengmc's own message when the netlist was refused (bad input)
+  FRAME_SOLVER = 's',    //!< stengmc's own message when ngspice could not finish a valid netlist
 };
 
 std::string frame(Frame kind, std::string_view payload) {
@@ -171,6 +172,18 @@ std::string failure(const NgspiceTransient& transient, const std::string& what, 
   throw InputError(failure(transient, what, session.errors));
 }
 
+//! A netlist ngspice took but could not integrate to its end ("timestep too small"): the
+//! solver failed, not the input (exit 1, not 2).
+struct SolverFailure : Error {
+  using Error::Error;
+};
+
+[[noreturn]] void fail_to_finish(const NgspiceTransient& transient, const std::string& what) {
+  throw SolverFailure(failure(transient, what, session.errors) +
+                      "\n(a solver failure: ngspice took the netlist but could not integrate it to the end; stiff "
+                      "switches such as diodes without junction capacitance are the usual cause, docs/faults.md)");
+}
+
 std::vector<double> read_vector(const NgspiceTransient& transient, const std::string& name) {
   std::string buffer(name);
   const pvector_info info = ngspice.vector_info(buffer.data());
@@ -206,13 +219,13 @@ std::vector<std::vector<double>> run_in_this_child(const NgspiceTransient& trans
   if (session.errors.find("rror") != std::string::npos) fail(transient, "the netlist does not load");
   command("run");
   if (!session.callback_error.empty()) fail(transient, session.callback_error);
-  if (session.exit_requested) fail(transient, "the simulator stopped");
+  if (session.exit_requested) fail_to_finish(transient, "the simulator stopped");
   std::vector<std::vector<double>> out{read_vector(transient, "time")};
   // ngspice reports success even when the transient aborts ("timestep too small"): what
   // counts is the time it reached.
   const double reached = out[0].back();
   if (!(std::abs(reached - transient.stop_time_s) <= 1e-9 * transient.stop_time_s))
-    fail(transient, "the transient stopped at t = " + std::to_string(reached) + " s before its end " +
+    fail_to_finish(transient, "the transient stopped at t = " + std::to_string(reached) + " s before its end " +
                         std::to_string(transient.stop_time_s) + " s");
   for (const std::string& name : transient.vectors) {
     out.push_back(read_vector(transient, name));
@@ -238,6 +251,8 @@ void child_work(const NgspiceTransient& transient, int parent_fd) {
       payload.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
     }
     write_to_pipe(parent_fd, frame(FRAME_RESULT, payload));
+  } catch (const SolverFailure& error) {
+    write_to_pipe(parent_fd, frame(FRAME_SOLVER, error.what()));
   } catch (const std::exception& error) {
     write_to_pipe(parent_fd, frame(FRAME_ERROR, error.what()));
   }
@@ -289,7 +304,7 @@ class FrameReader {
     pending_.erase(0, at);
   }
   std::string messages;
-  std::optional<std::string> result, error;
+  std::optional<std::string> result, error, solver_failure;
 
  private:
   void handle(Frame kind, std::string_view payload) {
@@ -307,6 +322,7 @@ class FrameReader {
         break;
       case FRAME_RESULT: result.emplace(payload); break;
       case FRAME_ERROR: error.emplace(payload); break;
+      case FRAME_SOLVER: solver_failure.emplace(payload); break;
     }
   }
   std::string pending_;
@@ -346,6 +362,7 @@ NgspiceVectors run_ngspice_transient(const NgspiceTransient& transient) {
   const ChildOutcome outcome = run_in_child([&](int parent_fd) { child_work(transient, parent_fd); }, transient.budget,
                                             [&](std::string_view bytes) { reader.take(bytes); });
   if (reader.error) throw InputError(*reader.error);
+  if (reader.solver_failure) throw Error(*reader.solver_failure);
   if (outcome.end == ChildOutcome::End::finished && reader.result) return decode_vectors(transient, *reader.result);
   std::string what = outcome.describe(transient.budget) + " on this netlist";
   if (outcome.end == ChildOutcome::End::out_of_time || outcome.end == ChildOutcome::End::out_of_memory)

@@ -21,15 +21,15 @@ const H5::StrType& string_type() {
   return type;
 }
 
-//! Runs HDF5 calls, turning their exceptions (which do not derive from std::exception)
-//! into ours, with the file and the object named, so the CLI reports them and the stack
-//! unwinds (which removes a half-written temporary file).
-template <class Failure, class Call>
-auto guarded(const std::string& file, const std::string& what, Call call) -> decltype(call()) {
+//! Runs HDF5 calls reading `object` of `file`, turning their exceptions (which do not
+//! derive from std::exception) into ours, with the file and the object named, so the CLI
+//! reports them.
+template <class Call>
+auto reading(const std::string& file, const std::string& object, Call call) -> decltype(call()) {
   try {
     return call();
   } catch (const H5::Exception& e) {
-    throw Failure(file + ": " + what + ": " + e.getDetailMsg());
+    throw Hdf5ReadFailure(file + ": cannot read " + object + ": " + e.getDetailMsg(), object);
   }
 }
 
@@ -397,7 +397,7 @@ std::vector<hsize_t> numeric_extent(const H5::H5File& file, const std::string& f
 
 std::vector<double> Hdf5Reader::vector(const std::string& path) const {
   if (!has(path)) throw InputError(path_ + ": dataset " + path + " is missing");
-  return guarded<InputError>(path_, "cannot read " + path, [&] {
+  return reading(path_, path, [&] {
     H5::DataSet dataset;
     const auto dims = numeric_extent(file_, path_, path, 1, dataset);
     std::vector<double> values(dims[0]);
@@ -408,7 +408,7 @@ std::vector<double> Hdf5Reader::vector(const std::string& path) const {
 
 std::vector<std::vector<double>> Hdf5Reader::matrix(const std::string& path) const {
   if (!has(path)) throw InputError(path_ + ": dataset " + path + " is missing");
-  return guarded<InputError>(path_, "cannot read " + path, [&] {
+  return reading(path_, path, [&] {
     H5::DataSet dataset;
     const auto dims = numeric_extent(file_, path_, path, 2, dataset);
     std::vector<double> flat(dims[0] * dims[1]);
@@ -422,7 +422,7 @@ std::vector<std::vector<double>> Hdf5Reader::matrix(const std::string& path) con
 }
 
 std::string Hdf5Reader::string_attribute(const std::string& object, const std::string& name) const {
-  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&] {
+  return reading(path_, "attribute " + object + "@" + name, [&] {
     const auto found = find_attribute(file_, object, name);
     if (!found) return std::string();
     const H5::Attribute& attribute = *found;
@@ -434,7 +434,7 @@ std::string Hdf5Reader::string_attribute(const std::string& object, const std::s
 }
 
 std::optional<double> Hdf5Reader::number_attribute(const std::string& object, const std::string& name) const {
-  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<double> {
+  return reading(path_, "attribute " + object + "@" + name, [&]() -> std::optional<double> {
     if (!has(object) && object != "/") return std::nullopt;
     const auto found = find_attribute(file_, object, name);
     if (!found) return std::nullopt;
@@ -448,7 +448,7 @@ std::optional<double> Hdf5Reader::number_attribute(const std::string& object, co
 }
 
 std::optional<std::int64_t> Hdf5Reader::integer_attribute(const std::string& object, const std::string& name) const {
-  return guarded<InputError>(path_, "cannot read attribute " + object + "@" + name, [&]() -> std::optional<std::int64_t> {
+  return reading(path_, "attribute " + object + "@" + name, [&]() -> std::optional<std::int64_t> {
     const auto found = find_attribute(file_, object, name);
     if (!found) return std::nullopt;
     const H5::Attribute& attribute = *found;

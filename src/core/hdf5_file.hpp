@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/hdf5_dimensions.hpp"
 #include "core/temporary_file.hpp"
 
@@ -105,7 +106,21 @@ class Hdf5Writer {
   WrittenDatasets written_;  //!< every dataset written with its extent, so commit() need not ask HDF5
 };
 
-//! Reads datasets and attributes from an existing file, with errors naming the file.
+//! The HDF5 library failed reading an object of an existing file, which is then damaged
+//! (or not what it claims to be). The message names the file and the object and gives the
+//! library's words; object() alone ("attribute /@file_type", "/atoms/onset_values") lets the reader
+//! of a family of files say it in that family's terms, without the library's words.
+class Hdf5ReadFailure : public InputError {
+ public:
+  Hdf5ReadFailure(const std::string& message, std::string object) : InputError(message), object_(std::move(object)) {}
+  [[nodiscard]] const std::string& object() const { return object_; }
+
+ private:
+  std::string object_;
+};
+
+//! Reads datasets and attributes from an existing file, with errors naming the file (an
+//! HDF5 failure: Hdf5ReadFailure).
 class Hdf5Reader {
  public:
   explicit Hdf5Reader(std::string path);

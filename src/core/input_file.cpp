@@ -17,6 +17,7 @@ std::string describe_file_type(std::filesystem::file_type type) {
     case std::filesystem::file_type::block: return "a block device";
     case std::filesystem::file_type::fifo: return "a FIFO";
     case std::filesystem::file_type::socket: return "a socket";
+    case std::filesystem::file_type::symlink: return "a symbolic link";
     default: return "not a regular file";
   }
 }

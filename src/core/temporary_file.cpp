@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -29,9 +30,39 @@ static_assert(std::atomic<int>::is_always_lock_free);
 
 constexpr int HANDLED_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
 
+// The interruption note, guarded like a slot: 0 none, 1 being written, 2 armed.
+constexpr std::size_t NOTE_BYTES = 2 * PATH_MAX;
+std::array<char, NOTE_BYTES> note_text{};
+std::atomic<int> note_state{0};
+std::atomic<std::size_t> note_length{0};
+
+//! write(2) until done or failed: the only output a signal handler may make.
+void write_all(int fd, const char* data, std::size_t length) {
+  while (length > 0) {
+    const ssize_t written = ::write(fd, data, length);
+    if (written <= 0) {
+      if (written < 0 && errno == EINTR) continue;
+      return;
+    }
+    data += written;
+    length -= static_cast<std::size_t>(written);
+  }
+}
+
 extern "C" void remove_temporaries_and_die(int signal_number) {
+  const int saved_errno = errno;
   for (int s = 0; s < SLOTS; ++s)
     if (slot_state[s].load() == 2) ::unlink(slot_names[s].data());
+  if (note_state.load() == 2) {
+    static constexpr char HEAD[] = "\nstengmc: interrupted by ";
+    write_all(STDERR_FILENO, HEAD, sizeof HEAD - 1);
+    const char* name = signal_number == SIGINT ? "SIGINT (Ctrl-C)" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
+    write_all(STDERR_FILENO, name, std::strlen(name));
+    write_all(STDERR_FILENO, ". ", 2);
+    write_all(STDERR_FILENO, note_text.data(), note_length.load());
+    write_all(STDERR_FILENO, "\n", 1);
+  }
+  errno = saved_errno;
   // Die of the same signal, so the parent (a shell, a batch system) sees what happened.
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
@@ -96,6 +127,16 @@ long temporary_pid(const std::string& file, const std::string& base, const std::
 }
 
 }  // namespace
+
+void set_interruption_note(const std::string& note) {
+  install_handlers();
+  note_state.store(1);  // the handler ignores the note while it changes
+  const std::size_t length = std::min(note.size(), NOTE_BYTES);
+  std::memcpy(note_text.data(), note.data(), length);
+  note_length.store(length);
+  if (length > 0) note_state.store(2);
+  else note_state.store(0);
+}
 
 std::string temporary_name(const std::string& final_path) {
   return final_path + "." + host_name() + "." + std::to_string(::getpid()) + ".tmp";

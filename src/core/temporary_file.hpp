@@ -46,4 +46,18 @@ std::string temporary_name(const std::string& final_path);
 //! returns how many were removed.
 std::size_t remove_stale_temporaries(const std::string& final_path);
 
+//! What the same signal handler tells the user before the process dies (how to resume, say):
+//! printed on standard error after the temporaries are removed. One note at a time; "" (or
+//! InterruptionNote's end) clears it. Installs the handler if it is not yet installed.
+void set_interruption_note(const std::string& note);
+
+//! Sets a note for its lifetime (a run that keeps a journal: "the same command resumes").
+class InterruptionNote {
+ public:
+  explicit InterruptionNote(const std::string& note) { set_interruption_note(note); }
+  ~InterruptionNote() { set_interruption_note(""); }
+  InterruptionNote(const InterruptionNote&) = delete;
+  InterruptionNote& operator=(const InterruptionNote&) = delete;
+};
+
 }  // namespace stengmc

@@ -279,11 +279,13 @@ std::vector<std::string> TomlTable::string_list(std::string_view key, const std:
   const toml::node* node = node_of(lookup(key));
   if (!node) return out;
   const auto* array = node->as_array();
-  if (!array) fail(key, "is " + describe(*node) + "; expected an array of strings, each one of " + join(allowed));
+  if (!array)
+    fail(key, "is " + describe(*node) + "; expected an array of strings" +
+                  (allowed.empty() ? std::string() : ", each one of " + join(allowed)));
   for (std::size_t i = 0; i < array->size(); ++i) {
     const auto* text = (*array)[i].as_string();
     if (!text) fail(key, std::string("[") + std::to_string(i) + "] is " + describe((*array)[i]) + "; expected a string");
-    if (std::find(allowed.begin(), allowed.end(), text->get()) == allowed.end())
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), text->get()) == allowed.end())
       fail(key, std::string("[") + std::to_string(i) + "] = \"" + text->get() + "\" is not one of " + join(allowed));
     out.push_back(text->get());
   }

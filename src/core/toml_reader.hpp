@@ -41,7 +41,7 @@ class TomlTable {
   }
   //! An array of finite numbers (integers or floats), empty when absent.
   std::vector<double> number_list(std::string_view key);
-  //! An array of strings, each one of `allowed` (empty when absent).
+  //! An array of strings, each one of `allowed`, or any when `allowed` is empty (empty when absent).
   std::vector<std::string> string_list(std::string_view key, const std::vector<std::string_view>& allowed);
   //! A free string; `fallback` when absent.
   std::string string(std::string_view key, std::string_view fallback);

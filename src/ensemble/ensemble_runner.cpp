@@ -16,6 +16,7 @@
 #include "core/format.hpp"
 #include "core/progress.hpp"
 #include "core/random_stream.hpp"
+#include "core/temporary_file.hpp"
 #include "ensemble/journal.hpp"
 #include "ensemble/process_world.hpp"
 #include "ensemble/run_realisation.hpp"
@@ -185,7 +186,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
   if (options.only) {
     run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook, nullptr);
   } else {
-    if (options.restart) std::filesystem::remove(journal_path);
+    if (options.restart) discard_journal(journal_path);
     const std::uint64_t identity =
         hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
     Journal journal(journal_path, {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
@@ -197,11 +198,18 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
         done.emplace(r.realisation, r);
     run.resumed = done.size();
     for (const auto& [id, r] : done) status.add(r);
+    if (options.show_progress && run.resumed > 0)
+      std::fprintf(stderr, "  resuming: %zu realisations taken from %s (--restart starts over)\n", run.resumed,
+                   journal_path.c_str());
+    // A Ctrl-C or a batch system's SIGTERM ends the run where it is; say what is kept.
+    const InterruptionNote note("The finished realisations are kept in " + journal_path +
+                                ": the same command resumes from them (--restart starts over).");
     std::optional<Progress> progress;
     if (options.show_progress) {
       // Only what is left: counting resumed realisations as done now would make the ETA
       // optimistic.
       progress.emplace(options.progress_label, to_run - done.size());
+      if (options.job_start) progress->set_job_share(*options.job_start, options.job_before, options.job_share);
     }
     // Without a target, one batch of everything balances the threads best.
     const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;

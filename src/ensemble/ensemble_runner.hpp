@@ -2,6 +2,7 @@
 //! The Monte Carlo runner: realisations of a study in parallel (OpenMP), each a unit of
 //! work computable from the study and its id alone, kept in a crash-safe journal so a
 //! killed run resumes where it stopped (docs/ensembles.md).
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -15,6 +16,11 @@
 
 namespace stengmc {
 
+//! The most threads a command or the Python module starts: far above any machine's cores
+//! (extra threads only wait), far below what makes the thread library fail to start them
+//! (100 000 crashed the Python module).
+inline constexpr int MAX_THREADS = 1024;
+
 struct EnsembleOptions {
   std::string progress_label = "ensemble";  //!< e.g. "point 3/14" in a sweep
   int threads = 0;                     //!< 0: OpenMP's default (OMP_NUM_THREADS or the cores)
@@ -25,6 +31,10 @@ struct EnsembleOptions {
   //! Run only this slice of the realisations (and keep only its records from a journal);
   //! not with a target (a slice cannot see when the whole would have stopped).
   std::optional<ShardSpec> shard{};
+  //! Part of a longer job (a sweep): when it started, and the job's fraction this run covers,
+  //! [job_before, job_before + job_share]: the progress then gives the whole job's ETA too.
+  std::optional<std::chrono::steady_clock::time_point> job_start{};
+  double job_before = 0.0, job_share = 1.0;
 };
 
 //! A caller's own reduction of every realisation, run in the worker thread as each record

@@ -5,16 +5,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <bit>
 #include <cerrno>
 #include <filesystem>
 #include <optional>
-#include <span>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
+#include "core/byte_codec.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/posix_file.hpp"
 #include "core/temporary_file.hpp"
 
@@ -40,6 +40,18 @@ std::string how_to_start_afresh(const std::string& path) {
   return "To start afresh, delete " + path + " or run again with --restart.";
 }
 
+bool starts_with_magic(std::string_view file) { return file.substr(0, MAGIC.size()) == MAGIC; }
+
+[[noreturn]] void refuse_foreign(const std::string& path, const std::string& advice) {
+  throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) + "). " + advice);
+}
+
+//! What to do about a file of something else where a journal should be: --restart would
+//! refuse it too (discard_journal), so it is not the advice.
+std::string how_to_get_past(const std::string& path) {
+  return "Refusing to overwrite it: move " + path + " away, or choose another output name (--out).";
+}
+
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
   out << "0x" << std::hex << value;
@@ -50,91 +62,6 @@ std::string quoted(const std::string& description) {
   return description.empty() ? std::string("(no description)") : "\"" + description + "\"";
 }
 
-// ---------------------------------------------------------------- encoding
-
-class Encoder {
- public:
-  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void u64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void text(std::string_view s) {
-    u32(static_cast<std::uint32_t>(s.size()));
-    bytes_.append(s);
-  }
-  void doubles(std::span<const double> values) {
-    for (double v : values) f64(v);
-  }
-  void vector(const std::vector<double>& values) {
-    u64(values.size());
-    doubles(values);
-  }
-  std::string& bytes() { return bytes_; }
-
- private:
-  std::string bytes_;
-};
-
-//! Reads a payload whose checksum passed. Running out of bytes or a count that differs from
-//! this program's then means the file was written by another format, not torn: the
-//! caller's `malformed` throws the InputError.
-class Decoder {
- public:
-  explicit Decoder(std::string_view bytes) : bytes_(bytes) {}
-  bool u8(std::uint8_t& v) {
-    if (left() < 1) return false;
-    v = static_cast<std::uint8_t>(bytes_[position_++]);
-    return true;
-  }
-  bool u32(std::uint32_t& v) {
-    std::uint64_t wide = 0;
-    if (!little_endian(4, wide)) return false;
-    v = static_cast<std::uint32_t>(wide);
-    return true;
-  }
-  bool u64(std::uint64_t& v) { return little_endian(8, v); }
-  bool text(std::string& s) {
-    std::uint32_t n = 0;
-    if (!u32(n) || left() < n) return false;
-    s.assign(bytes_.substr(position_, n));
-    position_ += n;
-    return true;
-  }
-  bool doubles(std::size_t n, double* out) {
-    if (left() / 8 < n) return false;  // before allocating anything of size n
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint64_t bits = 0;
-      little_endian(8, bits);
-      out[i] = std::bit_cast<double>(bits);
-    }
-    return true;
-  }
-  bool vector(std::vector<double>& values) {
-    std::uint64_t n = 0;
-    if (!u64(n) || left() / 8 < n) return false;
-    values.resize(n);
-    return doubles(n, values.data());
-  }
-  [[nodiscard]] std::size_t left() const { return bytes_.size() - position_; }
-
- private:
-  bool little_endian(std::size_t width, std::uint64_t& v) {
-    if (left() < width) return false;
-    v = 0;
-    for (std::size_t i = 0; i < width; ++i)
-      v |= std::uint64_t{static_cast<unsigned char>(bytes_[position_ + i])} << (8 * i);
-    position_ += width;
-    return true;
-  }
-
-  std::string_view bytes_;
-  std::size_t position_ = 0;
-};
-
 //! The framed record: length, payload, checksum.
 std::string encode_frame(const RealisationRecord& record, const std::string& path) {
   const std::size_t asperities = record.asperity_count();
@@ -142,7 +69,7 @@ std::string encode_frame(const RealisationRecord& record, const std::string& pat
     if (column.size() != asperities)
       throw Error(path + ": realisation " + std::to_string(record.realisation) +
                   ": asperity columns of different lengths cannot be journalled");
-  Encoder out;
+  ByteEncoder out;
   out.u32(0);  // payload length, filled in below
   out.u64(record.realisation);
   out.u8(record.valid ? 1 : 0);
@@ -172,14 +99,16 @@ std::string encode_frame(const RealisationRecord& record, const std::string& pat
   return bytes;
 }
 
-RealisationRecord decode_payload(std::string_view payload, const std::string& path, std::size_t index) {
+//! `advice` says what to do about a file written by another record format (how to start
+//! afresh, or how to make the file again).
+RealisationRecord decode_payload(std::string_view payload, const std::string& path, std::size_t index,
+                                 const std::string& advice) {
   const auto malformed = [&](const std::string& what) {
     return InputError(path + ": record " + std::to_string(index + 1) + " " + what +
-                      ": the journal was written by a program with another record format. The program changed "
-                      "since the interrupted run, so its finished realisations cannot be reused. " +
-                      how_to_start_afresh(path));
+                      ": the file was written by a program with another record format. The program changed "
+                      "since it was written, so its finished realisations cannot be reused. " + advice);
   };
-  Decoder in(payload);
+  ByteDecoder in(payload);
   RealisationRecord record;
   std::uint8_t valid = 0;
   std::uint32_t scalars = 0, columns = 0;
@@ -264,7 +193,7 @@ std::optional<std::uint64_t> next_frame(std::string_view body, std::uint64_t fro
 
 //! The header: magic, format version, study hash, description.
 std::string encode_header(const JournalIdentity& identity) {
-  Encoder header;
+  ByteEncoder header;
   header.bytes().append(MAGIC);
   header.u32(FORMAT_VERSION);
   header.u64(identity.study_hash);
@@ -278,24 +207,21 @@ struct Header {
   std::uint64_t body_start = 0;  //!< offset of the first record [bytes]
 };
 
-//! The header at the start of `file` (the whole file). It was complete before the file got
-//! its name, so anything wrong with it is not a torn write: refuse rather than overwrite
-//! what may be someone else's file.
-Header parse_header(std::string_view file, const std::string& path) {
+//! The header at the start of `file` (the whole file), whose magic the caller checked. It
+//! was complete before the file got its name, so anything wrong with it is not a torn
+//! write: refuse rather than overwrite what may be someone else's file. `advice` says what
+//! to do about it (how to start afresh, or how to make the file again).
+Header parse_header(std::string_view file, const std::string& path, const std::string& advice) {
   const std::uint64_t fixed = MAGIC.size() + 4 + 8 + 4;
-  if (file.size() < MAGIC.size() || file.substr(0, MAGIC.size()) != MAGIC)
-    throw InputError(path + ": not a stengmc journal (it does not start with " + std::string(MAGIC) +
-                     "); refusing to overwrite it. " + how_to_start_afresh(path));
-  if (file.size() < fixed) throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+  if (file.size() < fixed) throw InputError(path + ": the journal header is damaged. " + advice);
   const auto version = little_endian(file.substr(MAGIC.size(), 4));
   Header header;
   header.study_hash = little_endian(file.substr(MAGIC.size() + 4, 8));
   const auto description_size = little_endian(file.substr(MAGIC.size() + 12, 4));
   if (version != FORMAT_VERSION)
     throw InputError(path + ": journal format version " + std::to_string(version) + ", this program reads version " +
-                     std::to_string(FORMAT_VERSION) + ". " + how_to_start_afresh(path));
-  if (file.size() - fixed < description_size)
-    throw InputError(path + ": the journal header is damaged. " + how_to_start_afresh(path));
+                     std::to_string(FORMAT_VERSION) + ". " + advice);
+  if (file.size() - fixed < description_size) throw InputError(path + ": the journal header is damaged. " + advice);
   header.description.assign(file.substr(fixed, description_size));
   header.body_start = fixed + description_size;
   return header;
@@ -310,31 +236,38 @@ std::string encode_record_frame(const RealisationRecord& record, const std::stri
 RealisationRecord decode_record_frame(std::string_view frame, const std::string& source) {
   if (!frame_at(frame, 0) || frame.size() != LENGTH_BYTES + little_endian(frame.substr(0, LENGTH_BYTES)) + CHECKSUM_BYTES)
     throw InputError(source + ": a record's checksum does not hold (damaged in transit or on disk)");
-  return decode_payload(frame.substr(LENGTH_BYTES, frame.size() - LENGTH_BYTES - CHECKSUM_BYTES), source, 0);
+  return decode_payload(frame.substr(LENGTH_BYTES, frame.size() - LENGTH_BYTES - CHECKSUM_BYTES), source, 0,
+                        "Run every process of the job with the same stengmc.");
 }
 
-JournalContents read_journal_file(const std::string& path) {
+JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice) {
+  // A FIFO would block the read for ever, a device feed it without end: a regular file only.
+  check_input_file(path, what);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path + ": cannot open: " + system_message(errno));
   std::string file;
   try {
     struct stat status {};
     if (::fstat(fd, &status) != 0) throw_system(path, "cannot read", errno);
+    // The magic before the whole file: a large file of something else is not read into memory.
+    if (!starts_with_magic(read_at(fd, 0, std::min<std::uint64_t>(MAGIC.size(), status.st_size), path)))
+      refuse_foreign(path, advice);
     file = read_at(fd, 0, static_cast<std::uint64_t>(status.st_size), path);
   } catch (...) {
     ::close(fd);
     throw;
   }
   ::close(fd);
-  Header header = parse_header(file, path);
+  Header header = parse_header(file, path, advice);
   JournalContents contents{header.study_hash, std::move(header.description), {}};
   const std::string_view body = std::string_view(file).substr(header.body_start);
   for (std::uint64_t offset = 0; offset < body.size();) {
     if (!frame_at(body, offset))
       throw InputError(path + ": damaged at byte " + std::to_string(header.body_start + offset) +
-                       " (a record whose checksum does not hold): the file cannot be trusted; make it again");
+                       " (a record whose checksum does not hold): the file cannot be trusted. " + advice);
     const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
-    contents.records.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path, contents.records.size()));
+    contents.records.push_back(
+        decode_payload(body.substr(offset + LENGTH_BYTES, length), path, contents.records.size(), advice));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
   }
   return contents;
@@ -350,13 +283,34 @@ void write_journal_file(const std::string& path, const JournalIdentity& identity
   sync_directory_of(path);
 }
 
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis) {
-  std::uint64_t hash = basis;
-  for (const char c : bytes) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 0x100000001b3ULL;
+void discard_journal(const std::string& path) {
+  const std::string nothing_removed =
+      ": --restart removes only a journal stengmc wrote, and removed nothing. Move it away, or choose another output "
+      "name (--out).";
+  std::error_code error;
+  const auto type = std::filesystem::symlink_status(path, error).type();  // a link is not followed: not ours
+  if (type == std::filesystem::file_type::not_found) return;
+  if (error) throw_system(path, "cannot examine the journal", error.value());
+  if (type != std::filesystem::file_type::regular)
+    throw InputError(path + " is " + describe_file_type(type) + ", not a stengmc journal" + nothing_removed);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw_system(path, "cannot open the journal", errno);
+  try {
+    struct stat status {};
+    if (::fstat(fd, &status) != 0) throw_system(path, "cannot read the journal", errno);
+    if (!S_ISREG(status.st_mode) ||
+        !starts_with_magic(read_at(fd, 0, std::min<std::uint64_t>(MAGIC.size(), status.st_size), path)))
+      throw InputError(path + " is a file that is not a stengmc journal (it does not start with " + std::string(MAGIC) +
+                       ")" + nothing_removed);
+    // A journal another run holds is that run's: removing it would lose what it appends.
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+      throw Error(path + ": the journal is in use by another running stengmc; --restart removed nothing");
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT) throw_system(path, "cannot delete the journal", errno);
+  } catch (...) {
+    ::close(fd);
+    throw;
   }
-  return hash;
+  ::close(fd);
 }
 
 // ---------------------------------------------------------------- Journal
@@ -366,6 +320,12 @@ Journal::Journal(std::string path, const JournalIdentity& identity) : path_(std:
   std::error_code ignored;  // a folder that cannot be made shows up as the open failing
   if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
 
+  // A FIFO would block the read for ever, a device feed it without end, a folder is no
+  // file: a journal is a regular file or nothing yet.
+  std::error_code error;
+  const auto type = std::filesystem::status(path_, error).type();
+  if (!error && type != std::filesystem::file_type::not_found && type != std::filesystem::file_type::regular)
+    throw InputError(path_ + " is " + describe_file_type(type) + ", not a journal. " + how_to_get_past(path_));
   fd_ = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
   if (fd_ < 0 && errno == ENOENT) {
     create(identity);
@@ -410,8 +370,11 @@ void Journal::load(const JournalIdentity& identity) {
   struct stat status {};
   if (::fstat(fd_, &status) != 0) throw_system(path_, "cannot read the journal", errno);
   const auto file_size = static_cast<std::uint64_t>(status.st_size);
+  // The magic before the whole file: a large file of something else is not read into memory.
+  if (!starts_with_magic(read_at(fd_, 0, std::min<std::uint64_t>(MAGIC.size(), file_size), path_)))
+    refuse_foreign(path_, how_to_get_past(path_));
   const std::string file = read_at(fd_, 0, file_size, path_);
-  const Header header = parse_header(file, path_);
+  const Header header = parse_header(file, path_, how_to_start_afresh(path_));
   if (header.study_hash != identity.study_hash)
     throw InputError(path_ + ": this journal belongs to another computation: it was written for " +
                      quoted(header.description) + " (study hash " + hex(header.study_hash) + "), this run is " +
@@ -433,7 +396,8 @@ void Journal::load(const JournalIdentity& identity) {
       offset = *next;
     }
     const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
-    recovered_.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size()));
+    recovered_.push_back(
+        decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size(), how_to_start_afresh(path_)));
     offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
     end_of_good = offset;
   }

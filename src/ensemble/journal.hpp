@@ -40,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/checksum.hpp"  // fnv1a64, the records' checksum
 #include "ensemble/realisation_record.hpp"
 
 namespace stengmc {
@@ -52,10 +53,6 @@ struct JournalIdentity {
   //! Human text stored in the header (program version, study file) for messages; not compared.
   std::string description;
 };
-
-//! 64-bit FNV-1a over bytes (Fowler, Noll & Vo; offset basis 0xcbf29ce484222325, prime
-//! 0x100000001b3). Chainable: pass the previous hash as `basis`.
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t basis = 0xcbf29ce484222325ULL);
 
 //! Encodes one record as a journal frame (length, payload, checksum): what a journal
 //! appends, what a shard file holds and what an MPI worker sends to rank 0. `path` names the
@@ -74,22 +71,30 @@ struct JournalContents {
   std::vector<RealisationRecord> records;  //!< in file order
 };
 
-//! Reads the whole journal at `path`. Unlike a resume, any damage is refused (InputError
-//! naming the file and the byte offset): a finished file written by write_journal_file is
-//! never torn, so damage there means the file cannot be trusted.
-JournalContents read_journal_file(const std::string& path);
+//! Reads the whole journal at `path`, a regular file (check_input_file; `what` names it:
+//! "the shard file"). Unlike a resume, any damage is refused (InputError naming the file
+//! and the byte offset, then `advice`: how to make the file again): a finished file written
+//! by write_journal_file is never torn, so damage there means the file cannot be trusted.
+JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice);
 
 //! Writes a complete journal at `path` in one go (header and every record, under a
 //! temporary name, fsync'ed, then renamed into place): a reader sees all of it or nothing.
 void write_journal_file(const std::string& path, const JournalIdentity& identity,
                         const std::vector<RealisationRecord>& records);
 
+//! What --restart does: deletes the journal at `path`, if there is one. Anything else there
+//! (a device, a FIFO, a folder, a link, a file that does not start as a journal) is refused
+//! with an InputError naming it and what it is, and left as it was: --restart deletes only
+//! what stengmc wrote. A journal another running stengmc holds is refused too (Error).
+void discard_journal(const std::string& path);
+
 //! An open journal file. Errors (disk full, permission) throw Error naming the file and the
 //! system's reason; an unusable existing file (another identity, another record format, not
 //! a journal) throws InputError saying how to start afresh.
 class Journal {
  public:
-  //! Opens `path` for appending, creating it (with its header) if it does not exist. An
+  //! Opens `path` for appending, creating it (with its header) if it does not exist (a
+  //! path where something other than a regular file sits is refused: InputError). An
   //! existing file's intact records are read and a torn or corrupt tail is cut off; if its
   //! study hash differs from `identity.study_hash`, throws InputError naming the file and
   //! both descriptions (the file is left untouched).

@@ -8,6 +8,7 @@
 
 #include "core/build_info.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "ensemble/ensemble_runner.hpp"
 
 namespace stengmc {
@@ -81,13 +82,17 @@ void write_shard_file(const std::string& path, const StudyFile& base, const Shar
 
 ShardFile read_shard_file(const std::string& path) {
   const std::string not_a_shard = path + ": not a finished shard file (";
+  check_input_file(path, "a shard file");  // a FIFO would block the read below for ever
   {
     std::ifstream in(path, std::ios::binary);
     std::string magic(8, '\0');
     if (!in.read(magic.data(), 8) || magic != "STENGMCJ")
       throw InputError(not_a_shard + "stengmc run STUDY --shard i/n writes those)");
   }
-  JournalContents contents = read_journal_file(path);
+  // A shard file is made by one command, and made again by the same command; `merge` has no
+  // --restart to offer.
+  JournalContents contents =
+      read_journal_file(path, "a shard file", "Make the shard again with stengmc run STUDY --shard i/n.");
   if (contents.description.rfind(SHARD_MAGIC, 0) != 0)
     throw InputError(not_a_shard + "it is a journal of a run that has not finished: run that shard again with "
                                    "`stengmc run STUDY --shard i/n`, which resumes it)");

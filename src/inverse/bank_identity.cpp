@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "core/build_info.hpp"
-#include "ensemble/journal.hpp"
+#include "core/checksum.hpp"
 
 namespace stengmc {
 

@@ -17,6 +17,11 @@
 //!   /records/        one entry per simulated record: truth, raw estimate, naive counts;
 //!                    flat k lists with offsets (true_stiffness / true_offset, stiffness,
 //!                    log_stiffness_se / estimate_offset)
+//! bank_format_version 3: every table carries its checksum, and so do the numeric
+//! attributes of /atoms and /maps (io/checksummed_tables.hpp); every reader verifies them
+//! all, so a damaged bank is refused naming the table, never used. Format 1 (the old atom
+//! table, no checksums) and format 2 (the old atom table with checksums) are refused with
+//! the advice to make the bank again.
 #include <string>
 
 #include "inverse/calibration_run.hpp"
@@ -35,7 +40,9 @@ struct StoredBank {
   CalibrationMaps maps;
 };
 
-//! @throws InputError when the file is not a stengmc calibration bank (or a newer format).
+//! Reads a bank (in a child process only: io/guarded_read.hpp), verifying every checksum.
+//! @throws InputError naming the file when it is not a regular file, not a stengmc
+//! calibration bank of this format, or damaged (naming the table whose checksum fails).
 StoredBank read_calibration_bank(const std::string& path);
 
 //! What a bank was made from (its identity alone).

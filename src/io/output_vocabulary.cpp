@@ -67,6 +67,8 @@ constexpr std::array TERMS{
     Term{"/circuit/voltage", "V", "load voltage", "time|valid_time"},
     Term{"/circuit/charge", "C", "charge delivered to the load resistor", "time|valid_time"},
     Term{"/circuit/measured_voltage", "V", "load voltage with measurement noise", "time|valid_time"},
+    Term{"/circuit/probes/v_*", "V", "node voltage of the load netlist ([circuit] probes)", "time|valid_time"},
+    Term{"/circuit/probes/i_*", "A", "device current of the load netlist ([circuit] probes)", "time|valid_time"},
     Term{"/events/time", "s", "event time", "event"},
     Term{"/events/asperity", "1", "index of the asperity", "event"},
     Term{"/events/kind", "1", "event kind", "event"},

@@ -38,8 +38,11 @@ void note_unresolvable_lines(SpectralResult& result, const SpectrumSettings& set
   std::string list;
   for (std::size_t k = 0; k < std::min(pairs.size(), NAMED); ++k) list += (k ? ", " : "") + pairs[k];
   if (pairs.size() > NAMED) list += " and " + std::to_string(pairs.size() - NAMED) + " more pairs";
+  std::string advice;  // only where the other method is there and did at least as well
+  if (!result.high_resolution) advice = "; [spectrum] high_resolution = true adds ESPRIT lines, which can resolve lines this close";
+  else if (result.high_resolution->n_identifiable > result.fft.n_identifiable) advice = "; prefer the ESPRIT result, which identifies more";
   result.notes.push_back("asperities " + list + ": lines inside the window's main lobe (" + format_number(lobe_hz) +
-                         " Hz): the FFT cannot resolve them; prefer the ESPRIT result");
+                         " Hz): the FFT cannot resolve them" + advice);
 }
 
 //! Sample rate of a uniform grid; spectra (MODEL.md §3) assume one.

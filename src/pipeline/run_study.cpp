@@ -281,8 +281,10 @@ RunResult run_study(const Study& study, const RunOptions& options) {
                                                                      : result.trajectories[i].motion.get());
       elements.push_back(study.asperities[i].element);
     }
+    std::vector<std::string> probe_vectors;
+    for (const NetlistProbe& probe : study.probes) probe_vectors.push_back(probe.vector);
     result.circuit = solve_netlist_circuit(elements, inputs, times.first(result.circuit_samples), *study.netlist,
-                                           keep.circuit_samples, {}, ngspice_budget(study, options.limits),
+                                           keep.circuit_samples, probe_vectors, ngspice_budget(study, options.limits),
                                            options.show_progress)
                          .circuit;
   } else {

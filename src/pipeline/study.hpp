@@ -12,6 +12,7 @@
 
 #include "circuit/circuit_solver.hpp"
 #include "circuit/netlist_load.hpp"
+#include "circuit/netlist_probes.hpp"
 #include "spectral/spectrum_settings.hpp"
 #include "core/toml_reader.hpp"
 #include "model/asperity.hpp"
@@ -71,6 +72,7 @@ struct Study {
   std::vector<Asperity> asperities;        //!< the asperities a run simulates (= population.asperities)
   CircuitParams circuit;
   std::shared_ptr<const NetlistLoad> netlist;  //!< [circuit] netlist: the load ngspice solves instead of R || C_L
+  std::vector<NetlistProbe> probes;            //!< [circuit] probes: the netlist's quantities a run records
   CircuitInput circuit_input = CircuitInput::actual;
   DomainPolicy domain_policy = DomainPolicy::error;
   OutputSettings output;      //!< [output]: what a run writes and where (no number depends on it)

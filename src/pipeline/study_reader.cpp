@@ -7,6 +7,7 @@
 
 #include "circuit/circuit_settings.hpp"
 #include "circuit/netlist_key.hpp"
+#include "circuit/netlist_probes.hpp"
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -68,6 +69,7 @@ void read_circuit(TomlTable& root, Study& study) {
   if (!circuit) return;
   study.circuit = read_circuit_params(*circuit);
   study.netlist = read_netlist_key(*circuit, study.file);
+  study.probes = read_probes_key(*circuit, study.netlist.get());
   study.circuit_input = circuit->enumeration("input", study.circuit_input, CIRCUIT_INPUT_NAMES);
   if (study.circuit_input == CircuitInput::imposed && study.model != ModelKind::model1)
     circuit->fail("input", "= \"imposed\" needs [model] kind = \"model1\" (only Model 1 imposes a displacement x0)");

@@ -223,6 +223,101 @@ TEST(NetlistCircuit, NgspiceErrorsExitWithStatusTwoNamingTheNetlist) {
   EXPECT_EQ(file.string_attribute("/", "netlist_text"), "* load\nR1 steng 0 1e6\n");
 }
 
+//! The harvest of the README (scripts/rectifier_harvest.py): eight asperities on the bridge
+//! rectifier. With ideal diodes (no junction capacitance) ngspice stops with "Timestep too
+//! small": that is the solver failing on a netlist it took, exit 1 saying so, not bad input
+//! (exit 2). The shipped netlist's 0.1 aF junctions integrate to the end.
+TEST(NetlistCircuit, ARectifierNgspiceCannotFinishIsASolverFailureAndTheShippedOneFinishes) {
+  if (!ngspice_library_available()) GTEST_SKIP() << "built without ngspice (STENGMC_WITH_NGSPICE=OFF)";
+  testing::ScratchDir scratch("rectifier8");
+  std::string asperities;
+  for (const int k : {25, 50, 100, 155, 25, 50, 100, 155})
+    asperities += "[[surface.asperity]]\nstiffness_n_per_m = " + std::to_string(k) + "\n";
+  const std::string study = "duration_s = 2e-05\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\n"
+                            "belt_velocity_m_per_s = 10\n[surface.defaults]\nlength_m = 50e-6\n" + asperities +
+                            "[circuit]\nnetlist = \"rectifier.cir\"\n";
+  const std::string shipped = read_text(CIRCUITS + "bridge_rectifier.cir");
+  auto run = [&](const std::string& netlist) {
+    scratch.write("rectifier.cir", netlist);
+    std::filesystem::remove(scratch.file("out.h5"));
+    return testing::run_cli("run " + scratch.write("study.toml", study) + " --out " + scratch.file("out.h5"), scratch);
+  };
+  const auto ideal = run(replaced(shipped, "CJO=1e-19", "CJO=0"));
+  EXPECT_EQ(ideal.exit_code, 1) << ideal.output;
+  EXPECT_NE(ideal.output.find("rectifier.cir: ngspice: the transient stopped"), std::string::npos) << ideal.output;
+  EXPECT_NE(ideal.output.find("a solver failure"), std::string::npos) << ideal.output;
+  EXPECT_EQ(ideal.output.find("input error"), std::string::npos) << ideal.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+  const auto finished = run(shipped);
+  EXPECT_EQ(finished.exit_code, 0) << finished.output;
+}
+
+//! `[circuit] probes`: the rectifier's storage node, its diodes' and load's currents,
+//! recorded beside the port. Checked by circuit laws the probes do not share a code path
+//! with: Ohm's law on Rload (i = (v(vplus) - v(vminus)) / 100 MOhm) and Kirchhoff's current
+//! law at vplus (D1 and D2 feed Cstore and Rload), to ngspice's tolerances.
+TEST(NetlistCircuit, ProbesRecordTheNetlistsNodesAndCurrentsAsCircuitLawsSay) {
+  if (!ngspice_library_available()) GTEST_SKIP() << "built without ngspice (STENGMC_WITH_NGSPICE=OFF)";
+  testing::ScratchDir scratch("probes");
+  scratch.write("bridge_rectifier.cir", read_text(CIRCUITS + "bridge_rectifier.cir"));
+  const std::string study = replaced(
+      replaced(read_text(CIRCUITS + "bridge_rectifier.toml"), "../../surfaces",
+               std::string(STENGMC_SOURCE_DIR) + "/surfaces"),
+      "netlist = \"bridge_rectifier.cir\"",
+      "netlist = \"bridge_rectifier.cir\"\nprobes = [\"v(vplus)\", \"V(vminus)\", \"i(d1)\", \"i(d2)\", \"i(cstore)\", \"i(rload)\"]");
+  const auto r = testing::run_cli("run " + scratch.write("study.toml", study) + " -o " + scratch.file("out.h5"), scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Hdf5Reader file(scratch.file("out.h5"));
+  const auto plus = file.vector("/circuit/probes/v_vplus"), minus = file.vector("/circuit/probes/v_vminus");
+  const auto d1 = file.vector("/circuit/probes/i_d1"), d2 = file.vector("/circuit/probes/i_d2");
+  const auto store = file.vector("/circuit/probes/i_cstore"), load = file.vector("/circuit/probes/i_rload");
+  EXPECT_EQ(file.string_attribute("/circuit/probes/v_vminus", "units"), "V");
+  EXPECT_EQ(file.string_attribute("/circuit/probes/i_d1", "units"), "A");
+  EXPECT_EQ(file.string_attribute("/circuit/probes/v_vminus", "spice_name"), "v(vminus)");
+  ASSERT_EQ(plus.size(), file.vector("/time").size());
+  double peak_load = 0.0, peak_diode = 0.0, ohm = 0.0, kirchhoff = 0.0;
+  for (std::size_t j = 0; j < plus.size(); ++j) {
+    peak_load = std::max(peak_load, std::abs(load[j]));
+    peak_diode = std::max(peak_diode, std::abs(d1[j]) + std::abs(d2[j]));
+    ohm = std::max(ohm, std::abs(load[j] - (plus[j] - minus[j]) / 100e6));
+    kirchhoff = std::max(kirchhoff, std::abs(d1[j] + d2[j] - store[j] - load[j]));
+  }
+  ASSERT_GT(peak_load, 1e-10) << "the store never charged: nothing to check";
+  EXPECT_LE(ohm, 1e-9 * peak_load);
+  // ngspice's currents obey KCL to its abstol, scaled to the femtoamperes of these elements.
+  EXPECT_LE(kirchhoff, 1e-3 * peak_diode);
+}
+
+TEST(NetlistCircuit, ProbesThatCannotBeRecordedAreRefusedAtTheirKey) {
+  testing::ScratchDir scratch("probes-bad");
+  scratch.write("load.cir", "* load\nR1 steng mid 1e6\nR2 mid 0 1e6\nQ1 mid steng 0 npn\n.model npn NPN\n");
+  const std::string head = "duration_s = 1e-6\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\n"
+                           "[surface]\n[[surface.asperity]]\nstiffness_n_per_m = 75\n[circuit]\n";
+  auto error_of = [&](const std::string& circuit) {
+    try {
+      (void)parse_study(head + circuit, scratch.file("study.toml"));
+      return std::string("(no error)");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_EQ(error_of("netlist = \"load.cir\"\nprobes = [\"v(mid)\", \"i(r2)\", \"v(steng)\"]\n"), "(no error)");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"load_resistance_ohm = 1e6\nprobes = [\"v(mid)\"]\n", "it needs [circuit] netlist"},
+      {"netlist = \"load.cir\"\nprobes = [\"v(nowhere)\"]\n", "names a node 'nowhere'"},
+      {"netlist = \"load.cir\"\nprobes = [\"i(r9)\"]\n", "has no device 'r9'"},
+      {"netlist = \"load.cir\"\nprobes = [\"p(mid)\"]\n", "write v(node)"},
+      {"netlist = \"load.cir\"\nprobes = [\"v(a;b)\"]\n", "write v(node)"},
+      {"netlist = \"load.cir\"\nprobes = [\"i(q1)\"]\n", "put a 0 V source in series"},
+      {"netlist = \"load.cir\"\nprobes = [\"v(mid)\", \"V(MID)\"]\n", "listed twice"},
+      {"netlist = \"load.cir\"\nprobes = [1]\n", "expected a string"}};
+  for (const auto& [circuit, expected] : cases) {
+    const std::string message = error_of(circuit);
+    EXPECT_NE(message.find("[circuit] probes"), std::string::npos) << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
 TEST(NetlistCircuit, ExportedNetlistRunsInNgspiceAsTheBuiltInSolverOnItsPwlInput) {
   const auto ngspice = test::find_ngspice();
   ASSERT_TRUE(ngspice.has_value()) << "no ngspice executable on PATH (scripts/setup.sh installs it)";
@@ -234,16 +329,39 @@ TEST(NetlistCircuit, ExportedNetlistRunsInNgspiceAsTheBuiltInSolverOnItsPwlInput
   const RunResult run = run_study(study, quiet());
   const std::filesystem::path directory =
       test::make_unique_directory(std::filesystem::temp_directory_path(), "stengmc_export_");
+  const std::string exported = export_netlist_text(study, run);
   {
     std::ofstream out(directory / "export.cir");
-    out << export_netlist_text(study, run);
+    out << exported;
   }
+  // Knot times as a person writes them (3e-08, not 3.0000000000000004e-08), and a .save, so
+  // the raw file holds the port and not every node of every element.
+  EXPECT_NE(exported.find(" 3e-08 "), std::string::npos);
+  {  // every knot time of the first element: at most 6 significant digits (j / 100 MHz, j < 200)
+    const std::size_t from = exported.find("PWL(") + 4, to = exported.find(")", from);
+    std::string block = exported.substr(from, to - from);
+    std::replace(block.begin(), block.end(), '+', ' ');  // continuation marks (no exponent here has a '+')
+    std::istringstream knots(block);
+    std::string time, x;
+    std::size_t count = 0;
+    while (knots >> time >> x) {
+      const std::string mantissa = time.substr(0, time.find('e'));
+      std::size_t digits = 0;
+      for (char c : mantissa) digits += std::isdigit(static_cast<unsigned char>(c)) ? 1 : 0;
+      EXPECT_LE(digits, 6u) << time;
+      ++count;
+    }
+    EXPECT_EQ(count, run.times_s.size());
+  }
+  EXPECT_NE(exported.find(".save v(steng) i(vstengmc_port)"), std::string::npos);
   const std::string command = "cd '" + directory.string() + "' && '" + ngspice->string() +
                               "' -b -r export.raw export.cir > ngspice.log 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << read_text((directory / "ngspice.log").string());
   const test::RawFile raw = test::RawFile::read_binary(directory / "export.raw");
   const std::vector<double>& t = raw.column("time");
   ASSERT_NEAR(t.back(), run.times_s.back(), 1e-9 * run.times_s.back()) << "the transient stopped early";
+  EXPECT_LT(std::filesystem::file_size(directory / "export.raw"), (t.size() + 1) * 4 * sizeof(double))
+      << "more than time and the two saved vectors";
 
   // The reference: the built-in solver on exactly what the netlist holds, the samples
   // joined linearly (a PWL source; MODEL.md §2).

@@ -23,7 +23,9 @@ set(prefix "${WORK_DIR}/moved")
 
 foreach(expected bin/stengmc share/stengmc/scripts/plot_run.py share/stengmc/scripts/stengmc_h5.py
                  share/stengmc/examples/studies/paper/fig2_k155.toml
-                 share/stengmc/examples/surfaces/paper_four_stiffnesses.toml share/doc/stengmc/model.md)
+                 share/stengmc/examples/surfaces/paper_four_stiffnesses.toml share/doc/stengmc/model.md
+                 share/man/man1/stengmc.1 share/bash-completion/completions/stengmc share/doc/stengmc/LICENSE
+                 share/doc/stengmc/CITATION.cff share/doc/stengmc/CHANGELOG.md)
   if(NOT EXISTS "${prefix}/${expected}")
     message(FATAL_ERROR "the install lacks ${expected}")
   endif()

@@ -6,6 +6,8 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -102,6 +105,33 @@ TEST(EnsembleCommand, BitwiseIdenticalForOneAndTwoThreadsAndForARealisationAlone
   }
 }
 
+//! Starts `stengmc run study -j 2 -o out` (its stdout and stderr to out.log, out.err), waits
+//! until several realisations are in its journal, sends `signal` and returns the wait status.
+int run_until_journaled(const std::string& study, const std::string& out, int signal) {
+  const std::string journal = out + ".journal";
+  std::vector<std::string> args{STENGMC_BINARY, "run", study, "-j", "2", "-o", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, (out + ".log").c_str(), O_WRONLY | O_CREAT, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, (out + ".err").c_str(), O_WRONLY | O_CREAT, 0644);
+  if (posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ) != 0) return -1;
+  posix_spawn_file_actions_destroy(&actions);
+  // A record of ~24 asperities is ~2.5 kB: wait for several, well before the 40th.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::error_code ec;
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(std::filesystem::exists(journal) && std::filesystem::file_size(journal, ec) > 15'000))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
 TEST(EnsembleCommand, KilledRunResumesToTheUninterruptedDatasets) {
   ScratchDir scratch("ensemble-resume");
   const std::string study = scratch.write("study.toml", study_text(40, "trace_realisations = []\n"));
@@ -110,26 +140,7 @@ TEST(EnsembleCommand, KilledRunResumesToTheUninterruptedDatasets) {
 
   // Start the same run, let a few realisations reach the journal, then SIGKILL it.
   const std::string out = scratch.file("killed.h5"), journal = out + ".journal";
-  std::vector<std::string> args{STENGMC_BINARY, "run", study, "-j", "2", "-o", out};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, scratch.file("killed.log").c_str(), O_WRONLY | O_CREAT, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, scratch.file("killed.err").c_str(), O_WRONLY | O_CREAT, 0644);
-  ASSERT_EQ(posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  // A record of ~24 asperities is ~2.5 kB: wait for several, well before the 40th.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  std::error_code ec;
-  while (std::chrono::steady_clock::now() < deadline &&
-         !(std::filesystem::exists(journal) && std::filesystem::file_size(journal, ec) > 15'000))
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  ASSERT_EQ(kill(pid, SIGKILL), 0);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status = run_until_journaled(study, out, SIGKILL);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed; make it longer";
   ASSERT_FALSE(std::filesystem::exists(out)) << "a killed run left an output file";
   ASSERT_TRUE(std::filesystem::exists(journal));
@@ -139,6 +150,28 @@ TEST(EnsembleCommand, KilledRunResumesToTheUninterruptedDatasets) {
   EXPECT_NE(resumed.output.find("resumed from an interrupted run"), std::string::npos) << resumed.output;
   expect_bitwise_equal_files(scratch.file("whole.h5"), out);
 
+}
+
+//! Ctrl-C and a batch system's SIGTERM: the run dies of the signal (the shell's 130, 143),
+//! says on its way out where the finished realisations are and how to resume, and the run
+//! started again says how many it took from the journal.
+TEST(EnsembleCommand, AnInterruptedRunSaysHowToResumeAndTheResumeSaysWhatItTook) {
+  ScratchDir scratch("ensemble-interrupt");
+  const std::string study = scratch.write("study.toml", study_text(40, "trace_realisations = []\n"));
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const std::string out = scratch.file("interrupted" + std::to_string(signal) + ".h5");
+    const int status = run_until_journaled(study, out, signal);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be interrupted; make it longer";
+    EXPECT_EQ(WTERMSIG(status), signal);
+    std::ifstream err(out + ".err");
+    const std::string said((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+    EXPECT_NE(said.find("interrupted by SIG"), std::string::npos) << said;
+    EXPECT_NE(said.find("kept in " + out + ".journal: the same command resumes"), std::string::npos) << said;
+    ASSERT_FALSE(std::filesystem::exists(out));
+    const auto resumed = run_cli("run " + study + " -j 2 -o " + out, scratch);
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("realisations taken from " + out + ".journal"), std::string::npos) << resumed.output;
+  }
 }
 
 TEST(EnsembleCommand, AJournalOfAnotherStudyIsRefusedUnlessRestarted) {
@@ -155,6 +188,67 @@ TEST(EnsembleCommand, AJournalOfAnotherStudyIsRefusedUnlessRestarted) {
   const auto restarted = run_cli("run " + study + " --restart -o " + out, scratch);
   EXPECT_EQ(restarted.exit_code, 0) << restarted.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+//! What sits at `path`, for checking it was left alone: its type and, for a folder, its entries.
+std::string what_is_at(const std::string& path) {
+  const auto status = std::filesystem::symlink_status(path);
+  std::string text = std::to_string(static_cast<int>(status.type()));
+  if (status.type() == std::filesystem::file_type::directory)
+    for (const auto& entry : std::filesystem::directory_iterator(path)) text.append(" ").append(entry.path().filename().string());
+  return text;
+}
+
+//! --restart deleted whatever sat at <out>.journal: a device node, a FIFO, an empty folder
+//! (and a non-empty one gave a raw "filesystem error"). It removes only a regular file that
+//! starts as a stengmc journal; anything else is refused, named with what it is, and left as
+//! it was. Without --restart, a FIFO there is refused too instead of failing to be read.
+TEST(EnsembleCommand, RestartRemovesOnlyAStengmcJournal) {
+  ScratchDir scratch("ensemble-restart");
+  const std::string study = scratch.write("study.toml", study_text(2, "trace_realisations = []\n"));
+  const std::string out = scratch.file("out.h5"), journal = out + ".journal";
+  struct Case {
+    std::string what;                             //!< how the message names it
+    std::function<bool(const std::string&)> make;  //!< makes it at the path; false: cannot here
+  };
+  const std::vector<Case> cases = {
+      {"a FIFO", [](const std::string& p) { return ::mkfifo(p.c_str(), 0666) == 0; }},
+      // A copy of /dev/null's node: only root may make one.
+      {"a character device", [](const std::string& p) { return ::mknod(p.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0; }},
+      {"a folder", [](const std::string& p) { return std::filesystem::create_directory(p); }},
+      {"a folder", [](const std::string& p) {
+         std::filesystem::create_directory(p);
+         std::ofstream(p + "/results.h5") << "someone's data";
+         return true;
+       }},
+      {"a symbolic link", [&](const std::string& p) {
+         { Journal real(scratch.file("real.journal"), {.study_hash = 1, .description = "a journal elsewhere"}); }
+         std::filesystem::create_symlink(scratch.file("real.journal"), p);
+         return true;
+       }},
+      {"a file that is not a stengmc journal", [](const std::string& p) {
+         std::ofstream(p) << "someone's notes";
+         return true;
+       }},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::filesystem::remove_all(journal);
+    if (!c.make(journal)) continue;  // a device node without root
+    const std::string before = what_is_at(journal);
+    const auto refused = run_cli("run " + study + " --restart -o " + out, scratch, "timeout 60");
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_NE(refused.output.find(journal + " is " + c.what), std::string::npos) << refused.output;
+    EXPECT_EQ(refused.output.find("filesystem error"), std::string::npos) << refused.output;
+    EXPECT_EQ(what_is_at(journal), before);
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  std::filesystem::remove_all(journal);
+  ASSERT_EQ(::mkfifo(journal.c_str(), 0666), 0);
+  const auto resumed = run_cli("run " + study + " -o " + out, scratch, "timeout 60");
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+  EXPECT_NE(resumed.output.find(journal + " is a FIFO"), std::string::npos) << resumed.output;
+  EXPECT_TRUE(std::filesystem::is_fifo(journal));
 }
 
 // Short Model 2 runs of the lognormal-count surface; `surface` names the surface file.

@@ -4,11 +4,14 @@
 // end with its figure, and records it used to stop on with a library's text (equal
 // stiffnesses, other units, integer voltages, a prior's large smallest count).
 #include <gtest/gtest.h>
+#include <H5Cpp.h>
+#include <sys/stat.h>
 
 #include <boost/random/normal_distribution.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 #include <vector>
 
 #include "core/random_stream.hpp"
@@ -16,7 +19,7 @@
 #include "inverse/simulated_record.hpp"
 #include "core/hdf5_file.hpp"
 
-#include <H5Cpp.h>
+#include "core/input_file.hpp"
 #include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
@@ -358,6 +361,138 @@ TEST_F(InvertCommand, QuotesALongBadLineShort) {
   EXPECT_NE(r.output.find("signal.csv:3: '1e-08,xxxx"), std::string::npos) << r.output.substr(0, 400);
   EXPECT_NE(r.output.find("... (10000006 characters)' is not two finite numbers"), std::string::npos) << r.output.substr(0, 400);
   EXPECT_LT(r.output.size(), 1000u);
+}
+
+// ---------------------------------------------------------------- journals and banks (issue 22)
+
+//! A copy of the suite's bank in `scratch`, to damage.
+std::string bank_copy(const ScratchDir& scratch, const std::string& source) {
+  const std::string copy = scratch.file("bank.h5");
+  std::filesystem::copy_file(source, copy, std::filesystem::copy_options::overwrite_existing);
+  return copy;
+}
+
+void xor_byte(const std::string& path, std::uint64_t offset, unsigned char mask) {
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekg(static_cast<std::streamoff>(offset));
+  const char byte = static_cast<char>(file.get() ^ mask);
+  file.seekp(static_cast<std::streamoff>(offset));
+  file.put(byte);
+}
+
+//! Where the values of a contiguous dataset lie in the file [bytes].
+std::uint64_t data_offset(const std::string& path, const std::string& dataset) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t data = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  const haddr_t offset = H5Dget_offset(data);
+  H5Dclose(data);
+  H5Fclose(file);
+  EXPECT_NE(offset, HADDR_UNDEF) << dataset;
+  return offset;
+}
+
+//! Rewrites the numeric attribute object@name in place, as a stray write or an edit would.
+template <typename T>
+void rewrite_attribute(const std::string& path, const std::string& object, const std::string& name, T value) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  const hid_t holder = H5Oopen(file, object.c_str(), H5P_DEFAULT);
+  const hid_t attribute = H5Aopen(holder, name.c_str(), H5P_DEFAULT);
+  EXPECT_GE(H5Awrite(attribute, std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, &value), 0) << name;
+  H5Aclose(attribute);
+  H5Oclose(holder);
+  H5Fclose(file);
+}
+
+//! Runs invert with `bank`; expects exit 2, a message naming the bank with each fragment and
+//! no word of the HDF5 library, and no output file.
+void expect_bank_refused(const std::string& known, const std::string& bank, const std::vector<std::string>& fragments) {
+  ScratchDir scratch("invert-damaged-bank-run");
+  const std::string signal = scratch.write("signal.csv", simulated_csv({70.0}));
+  const std::string out = scratch.file("out.h5");
+  const auto r = run_cli("invert " + signal + " --known " + known + " --bank " + bank + " --out " + out, scratch, "timeout 60");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(bank + ": "), std::string::npos) << r.output;
+  for (const std::string& fragment : fragments)
+    EXPECT_NE(r.output.find(fragment), std::string::npos) << "expected '" << fragment << "' in:\n" << r.output;
+  for (const char* raw : {"H5A", "H5G", "H5D", "H5O", "failed"})
+    EXPECT_EQ(r.output.find(raw), std::string::npos) << "raw HDF5 text '" << raw << "' in:\n" << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+//! A bank was used silently when damaged: one flipped byte in /atoms/heads (the old atom
+//! table; its shapes' /atoms/onset_values now) moved two estimated lines (exit 0). Every table carries its checksum now; a damaged one is refused
+//! naming it, in the tables invert uses and in those it does not (the records), and so is a
+//! changed numeric attribute and one HDF5 cannot read ("H5Aexists failed" came out raw).
+TEST_F(InvertCommand, ADamagedBankIsRefusedNamingTheTable) {
+  ScratchDir scratch("invert-damaged-bank");
+  const std::string known = scratch_->file("device.toml"), source = scratch_->file("bank.h5");
+  const std::string remake = "make the bank again with stengmc calibrate";
+  // The suite's device reaches Pi ~6 only: its shapes are all onset-aligned (no breakaway rows).
+  for (const char* table : {"/atoms/onset_values", "/atoms/tail_phase", "/records/count"}) {
+    SCOPED_TRACE(table);
+    const std::string bank = bank_copy(scratch, source);
+    xor_byte(bank, data_offset(bank, table) + 133, 0x08);
+    expect_bank_refused(known, bank, {"table " + std::string(table) + " is damaged (checksum ", remake});
+  }
+  {
+    const std::string bank = bank_copy(scratch, source);
+    rewrite_attribute(bank, "/maps", "line_error_scale", 0.5);
+    expect_bank_refused(known, bank, {"the attributes of /maps are damaged", remake});
+  }
+  {
+    const std::string bank = bank_copy(scratch, source);
+    rewrite_attribute(bank, "/atoms", "split_pi", 11.0);
+    expect_bank_refused(known, bank, {"the attributes of /atoms are damaged", remake});
+  }
+  {
+    // The attribute's name length in its header message, made impossible: HDF5 cannot decode it.
+    const std::string bank = bank_copy(scratch, source);
+    const std::string bytes = read_text_file(bank, "the bank", 1ull << 30);
+    const auto name = bytes.find(std::string("bank_format_version") + '\0');
+    ASSERT_NE(name, std::string::npos);
+    xor_byte(bank, name - 6, 0xff);
+    xor_byte(bank, name - 5, 0xff);
+    expect_bank_refused(known, bank, {"the calibration bank is damaged (its attribute /@bank_format_version cannot be read)", remake});
+  }
+}
+
+//! Format 1 banks carry no checksums and format 2 ones the old atom table: refused with what
+//! to do, as are format versions that are no versions (bank_format_version = -1 and
+//! format_version = -1 were accepted).
+TEST_F(InvertCommand, ABankOfAnOldOrInvalidFormatIsRefused) {
+  ScratchDir scratch("invert-bank-format");
+  const std::string known = scratch_->file("device.toml"), source = scratch_->file("bank.h5");
+  std::string bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{1});
+  expect_bank_refused(known, bank, {"calibration bank format 1 carries no checksums", "make the bank again with stengmc calibrate"});
+  bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{2});
+  expect_bank_refused(known, bank, {"calibration bank format 2 holds the atoms as a table", "reads format 3",
+                                    "make the bank again with stengmc calibrate"});
+  bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{-1});
+  expect_bank_refused(known, bank, {"bank_format_version -1 is not a valid version"});
+  bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "format_version", std::int64_t{-1});
+  expect_bank_refused(known, bank, {"format_version -1 is not a valid version"});
+}
+
+//! calibrate --restart deleted whatever sat at <bank>.journal (a FIFO, a folder); --refit,
+//! which runs no journal, deleted it too. Both leave it now, and --restart refuses it.
+TEST_F(InvertCommand, CalibrateRemovesOnlyItsOwnJournal) {
+  ScratchDir scratch("calibrate-journal-path");
+  const std::string bank = bank_copy(scratch, scratch_->file("bank.h5")), journal = bank + ".journal";
+  ASSERT_EQ(::mkfifo(journal.c_str(), 0666), 0);
+  const auto refused =
+      run_cli("calibrate " + scratch_->file("device.toml") + " --restart -o " + bank + " -j 2", scratch, "timeout 60");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find(journal + " is a FIFO"), std::string::npos) << refused.output;
+  EXPECT_TRUE(std::filesystem::is_fifo(journal));
+  std::filesystem::remove(journal);
+  std::filesystem::create_directory(journal);
+  const auto refit = run_cli("calibrate " + scratch_->file("device.toml") + " --refit -o " + bank, scratch, "timeout 60");
+  EXPECT_EQ(refit.exit_code, 0) << refit.output;
+  EXPECT_TRUE(std::filesystem::is_directory(journal));
 }
 
 }  // namespace

@@ -81,6 +81,25 @@ TEST(NamedErrors, AnEmptyOutputFileKeyIsRefusedWithItsLine) {
   expect_named_error(run_cli("run " + study, scratch), {"study.toml:9:", "[output] file", "empty"});
 }
 
+//! `-o ""` (an unset shell variable) silently wrote the default output (results/...) of
+//! run, calibrate, merge, export-netlist and surface: an empty --out is refused naming the
+//! option, and nothing is written where the user did not ask.
+TEST(NamedErrors, AnEmptyOutOptionIsRefused) {
+  ScratchDir scratch("empty-out-option");
+  const std::string study = scratch.write(
+      "study.toml", "duration_s = 1e-6\nsample_rate_hz = 100e6\n[model]\nkind = \"model1\"\n[surface]\n"
+                    "[[surface.asperity]]\nstiffness_n_per_m = 75\n");
+  const std::string surface = std::string(STENGMC_SOURCE_DIR) + "/surfaces/pet_on_steel_gw.toml";
+  for (const std::string& command : {"run " + study, "calibrate " + study, "merge " + study + " " + study,
+                                     "export-netlist " + study, "surface " + surface + " -k 2"}) {
+    SCOPED_TRACE(command);
+    // In the scratch folder, where the default outputs (results/...) would appear.
+    const auto r = testing::run_command("cd " + scratch.file("") + " && " + STENGMC_BINARY + " " + command + " -o ''", scratch);
+    expect_named_error(r, {"--out", "an empty path"});
+    EXPECT_FALSE(std::filesystem::exists(scratch.file("results")));
+  }
+}
+
 //! 1e308 in a CSV: a histogram bin that wide overflowed the target law (exit 1, "refusing
 //! to write a non-finite value"); a voltage that large overflows its own square.
 TEST(NamedErrors, HugeCsvValuesAreRefusedWithTheirLine) {
@@ -203,6 +222,28 @@ TEST(NamedErrors, ValuesTheFuzzerFoundHangingAreRefusedAtTheirKey) {
     expect_named_error(run_cli("run " + scratch.write("study.toml", text) + " -o " + scratch.file("out.h5"), scratch, "timeout 30"),
                        {where});
   }
+}
+
+//! `[inverse]` is read by calibrate and invert, but a study with it is also run: a misspelt
+//! key there must be refused by `run` as well, at its line, not pass with exit 0.
+TEST(NamedErrors, AMisspeltInverseKeyIsRefusedByRunToo) {
+  ScratchDir scratch("inverse-key");
+  const std::string text = "duration_s = 2e-6\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\n"
+                           "[surface]\n[[surface.asperity]]\nstiffness_n_per_m = 75\n[inverse]\ncuont = [1, 4]\n";
+  const auto r = run_cli("run " + scratch.write("study.toml", text) + " -o " + scratch.file("out.h5"), scratch);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("study.toml:9"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cuont"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.h5")));
+}
+
+//! Bare `stengmc` is a question, not a usage error: the help, exit 0 (README, "Commands").
+TEST(NamedErrors, BareCommandPrintsTheHelp) {
+  ScratchDir scratch("bare");
+  const auto r = run_cli("", scratch);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Subcommands:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("calibrate"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
 // Faults around output files, through the real command line (docs/faults.md, "Rejected inputs and
 // faults"):
-//  - a full disk: every command that writes HDF5 is run with its output on a disk that is
-//    already full and on one that fills while the file is written; each must exit 1 with a
-//    message naming the output file and the system's "No space left on device", leave
-//    nothing in the output folder (no temporary, no partial file) and leave its inputs
-//    untouched. An ensemble must keep its journal whole, so that the next run, with space
-//    again, resumes it to the datasets of an uninterrupted run;
+//  - a full disk: every command that writes a file (HDF5, or export-netlist's netlist) is run
+//    with its output on a disk that is already full and on one that fills while the file is
+//    written; each must exit 1 with a message naming the output file and the system's "No
+//    space left on device", leave nothing in the output folder (no temporary, no partial
+//    file) and leave its inputs untouched. An ensemble must keep its journal whole, so that
+//    the next run, with space again, resumes it to the datasets of an uninterrupted run;
 //  - an output that is one of the command's inputs (also through a link), or not a regular
 //    file (a device, a FIFO, a folder): refused with exit 2 before anything runs, the input
 //    byte for byte as it was;
@@ -108,6 +108,7 @@ std::string voltage_csv() {
 struct Command {
   std::string name;
   std::string arguments;  //!< with OUT standing for the output path
+  std::string extension = ".h5";
 };
 
 //! Inputs of every command, written into `scratch` (never onto the full disk).
@@ -119,7 +120,9 @@ std::vector<Command> commands(const ScratchDir& scratch) {
   return {{"run", "run " + study + " -o OUT"},
           {"circuit", "circuit " + csv + " -R 1e6 -o OUT"},
           {"spectrum", "spectrum " + voltage + " -o OUT"},
-          {"surface", "surface " + surface + " -k 20 -o OUT"}};
+          {"surface", "surface " + surface + " -k 20 -o OUT"},
+          // Its netlist (~290 kB) was written through an ofstream, which keeps no reason.
+          {"export-netlist", "export-netlist " + study + " -o OUT", ".cir"}};
 }
 
 std::string with_output(std::string arguments, const std::string& out) {
@@ -136,7 +139,7 @@ TEST(FullDisk, EveryCommandFailsCleanlyNamingTheFileAndTheReason) {
     std::filesystem::create_directories(disk);
     for (const Command& command : commands(scratch)) {
       SCOPED_TRACE(command.name + " with " + std::to_string(free_bytes) + " bytes free");
-      const std::string out = disk + "/" + command.name + ".h5";
+      const std::string out = disk + "/" + command.name + command.extension;
       const std::vector<std::string> inputs_before = files_in(scratch.file(""));
       const auto result = run_cli(with_output(command.arguments, out), scratch, full_disk(disk, free_bytes));
       EXPECT_EQ(result.exit_code, 1) << result.output;
@@ -148,7 +151,7 @@ TEST(FullDisk, EveryCommandFailsCleanlyNamingTheFileAndTheReason) {
       // With space again the same command succeeds: nothing stale is in the way.
       const auto again = run_cli(with_output(command.arguments, out), scratch);
       EXPECT_EQ(again.exit_code, 0) << again.output;
-      EXPECT_EQ(files_in(disk), std::vector<std::string>{command.name + ".h5"});
+      EXPECT_EQ(files_in(disk), std::vector<std::string>{command.name + command.extension});
       std::filesystem::remove(out);
     }
   }
@@ -201,6 +204,25 @@ TEST(FullDisk, AnEnsembleOnAFullDiskSaysSoAndLeavesNothing) {
   EXPECT_TRUE(contains(result.output, out + ".journal")) << result.output;
   EXPECT_TRUE(contains(result.output, std::strerror(ENOSPC))) << result.output;
   EXPECT_TRUE(files_in(disk).empty()) << "left behind: " << files_in(disk).front();
+}
+
+//! plot's figures on a full disk: it said "cannot be plotted ... (a damaged or partial
+//! file?)" with exit 2, as if the input were bad, and left a partial (or empty) PNG that
+//! looks like a figure. Now the figure is written whole or not at all (the scripts write a
+//! temporary and rename it), and a failed write is exit 1 with the system's reason.
+TEST(FullDisk, PlotLeavesNoPartialFigureAndSaysWhy) {
+  ScratchDir scratch("full-disk-plot");
+  const std::string disk = scratch.file("disk");
+  std::filesystem::create_directories(disk);
+  const std::string run = disk + "/r.h5";
+  ASSERT_EQ(run_cli("run " + scratch.write("run.toml", RUN_STUDY) + " -o " + run, scratch).exit_code, 0);
+  for (const long long free_bytes : {0LL, 20000LL}) {
+    SCOPED_TRACE(std::to_string(free_bytes) + " bytes free");
+    const auto result = run_cli("plot " + run, scratch, full_disk(disk, free_bytes));
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_TRUE(contains(result.output, disk + "/r.png: cannot write the figure: " + std::strerror(ENOSPC))) << result.output;
+    EXPECT_EQ(files_in(disk), std::vector<std::string>{"r.h5"});
+  }
 }
 
 // ---------------------------------------------------------------- output = input
@@ -277,6 +299,39 @@ TEST(OutputPath, AnOutputThatIsNotARegularFileIsRefused) {
   }
   EXPECT_TRUE(std::filesystem::is_fifo(fifo));
   EXPECT_TRUE(std::filesystem::is_directory(scratch.file("folder.h5")));
+}
+
+//! `plot` writes <stem>.png (and <stem>_spectrum.png) beside the file: it wrote a PNG into a
+//! character device there, blamed a FIFO r.png on r.h5, and would write the figure over the
+//! very file plotted when that file's name ends in .png. Its figures get the output checks.
+TEST(OutputPath, PlotRefusesAFigurePathThatIsNotARegularFileOrTheFilePlotted) {
+  ScratchDir scratch("plot-figure-path");
+  const std::string study = scratch.write("study.toml", RUN_STUDY);
+  const std::string run = scratch.file("r.h5");
+  ASSERT_EQ(run_cli("run " + study + " -o " + run, scratch).exit_code, 0);
+  std::vector<std::pair<std::string, std::string>> figures;
+  const std::string device = scratch.file("r.png");
+  if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) figures.push_back({device, "a character device"});
+  const std::string fifo = scratch.file("r_spectrum.png");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  figures.push_back({fifo, "a FIFO"});
+  for (const auto& [figure, kind] : figures) {
+    SCOPED_TRACE(figure);
+    const auto result = run_cli("plot " + run, scratch, "timeout 60");
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    EXPECT_TRUE(contains(result.output, "the figure " + figure + " exists and is " + kind)) << result.output;
+    EXPECT_FALSE(contains(result.output, run + ": cannot be plotted")) << result.output;
+    EXPECT_TRUE(kind == "a FIFO" ? std::filesystem::is_fifo(figure) : std::filesystem::is_character_file(figure));
+    std::filesystem::remove(figure);  // the next case's figure is the one still in the way
+  }
+  // A run file named like its own figure.
+  const std::string named_png = scratch.file("f.png");
+  std::filesystem::copy_file(run, named_png);
+  const std::string before = read_bytes(named_png);
+  const auto onto = run_cli("plot " + named_png, scratch, "timeout 60");
+  EXPECT_EQ(onto.exit_code, 2) << onto.output;
+  EXPECT_TRUE(contains(onto.output, "the figure " + named_png + " is the input file " + named_png)) << onto.output;
+  EXPECT_TRUE(read_bytes(named_png) == before) << "the file plotted was overwritten";
 }
 
 // ---------------------------------------------------------------- kills and stale temporaries

@@ -3,6 +3,7 @@
 // attribute but the creation time); bad shard specifications and bad merges are refused
 // with exit 2, naming the file, and overwrite nothing.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -121,6 +122,53 @@ TEST(Shards, BadMergesAreRefusedNamingTheFileAndOverwriteNothing) {
   EXPECT_EQ(edited.exit_code, 2) << edited.output;
   EXPECT_NE(edited.output.find(study), std::string::npos) << edited.output;
   EXPECT_EQ(read_text(out), "an earlier result that must survive");
+}
+
+//! What merge reads is a regular file of a size it can hold (issue 22): a FIFO among the
+//! shards blocked the merge for ever, /dev/zero would be read until memory ran out. Each is
+//! refused naming the file and what it is; `timeout` turns the old hang into a failure.
+TEST(Shards, AShardThatIsNotARegularFileIsRefusedNamingIt) {
+  ScratchDir scratch("shards-not-regular");
+  const std::string study = scratch.write("study.toml", distributed_study(4));
+  const std::vector<std::string> s = run_shards(study, 2, "shard", scratch);
+  const std::string fifo = scratch.file("fifo.shard");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  const std::string out = scratch.file("merged.h5");
+  for (const auto& [file, what] : {std::pair<std::string, std::string>{fifo, "a FIFO"}, {"/dev/zero", "a character device"}}) {
+    const auto refused = run_cli("merge " + s[0] + " " + file + " -o " + out, scratch, "timeout 60");
+    EXPECT_EQ(refused.exit_code, 2) << file << ": " << refused.output;
+    EXPECT_NE(refused.output.find(file + " is not a regular file (" + what + ")"), std::string::npos) << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  // The shards are read whole: together they must fit the memory limit, like any work.
+  const auto large = run_cli("merge " + s[0] + " " + s[1] + " --max-memory-gb 1e-6 -o " + out, scratch, "timeout 60");
+  EXPECT_EQ(large.exit_code, 2) << large.output;
+  EXPECT_NE(large.output.find("most of it: the shard file " + scratch.file("shard")), std::string::npos) << large.output;
+  EXPECT_NE(large.output.find("--max-memory-gb"), std::string::npos) << large.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+//! merge has no --restart: a damaged shard, or one of another journal format, must say how
+//! to make it again, not advise an option merge does not have (issue 22).
+TEST(Shards, ADamagedShardIsRefusedWithAdviceMergeCanFollow) {
+  ScratchDir scratch("shards-damaged");
+  const std::string study = scratch.write("study.toml", distributed_study(4));
+  const std::vector<std::string> s = run_shards(study, 2, "shard", scratch);
+  const std::string bytes = read_text(s[1]);
+  std::string other_version = bytes;
+  other_version[8] = 1;  // the u32 journal format version after the magic
+  std::string damaged_record = bytes;
+  damaged_record[bytes.size() - 20] = static_cast<char>(damaged_record[bytes.size() - 20] ^ 0x10);
+  for (const auto& [what, text] : std::vector<std::pair<std::string, std::string>>{
+           {"a torn header", bytes.substr(0, 20)}, {"another format version", other_version},
+           {"a damaged record", damaged_record}}) {
+    const std::string damaged = scratch.write("damaged.shard", text);
+    const auto refused = run_cli("merge " + s[0] + " " + damaged + " -o " + scratch.file("merged.h5"), scratch);
+    EXPECT_EQ(refused.exit_code, 2) << what << ": " << refused.output;
+    EXPECT_NE(refused.output.find(damaged), std::string::npos) << what << ": " << refused.output;
+    EXPECT_NE(refused.output.find("stengmc run STUDY --shard i/n"), std::string::npos) << what << ": " << refused.output;
+    EXPECT_EQ(refused.output.find("--restart"), std::string::npos) << what << ": " << refused.output;
+  }
 }
 
 }  // namespace

@@ -3,11 +3,12 @@
 // limits), surface files (read and sampled), CSV files (displacements, signals,
 // histograms), HDF5 files (run files read by `circuit`, `spectrum` and `plot`), the
 // records `invert` reads (CSV `t,V`, run and ensemble files, read and checked as invert
-// checks them before it computes anything) and load netlists (`[circuit] netlist`: read,
+// checks them before it computes anything), load netlists (`[circuit] netlist`: read,
 // checked against the policy, includes inlined; every 50th accepted one also run by ngspice
-// in its child process).
+// in its child process) and calibration banks (read by `invert` and `calibrate --refit`,
+// then rebuilt into atoms).
 //
-//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5 | record | netlist
+//   fuzz_readers READER RUNS [SEED]     READER: study | surface | csv | hdf5 | record | netlist | bank
 //
 // Each execution takes a valid seed input (the repository's studies and surfaces, CSV and
 // HDF5 files made here), mutates it with a generator seeded by (SEED, execution) — bit
@@ -31,6 +32,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -40,11 +42,15 @@
 #include "circuit/ngspice_library.hpp"
 #include "core/error.hpp"
 #include "inverse/record_input.hpp"
+#include "inverse/atom_library.hpp"
+#include "inverse/calibration_run.hpp"
+#include "io/calibration_bank_file.hpp"
 #include "io/displacement_input.hpp"
 #include "io/inverse_signals.hpp"
 #include "core/hdf5_file.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
+#include "pipeline/study.hpp"
 #include "ensemble/study_file.hpp"
 #include "core/toml_reader.hpp"
 #include "pipeline/run_study.hpp"
@@ -167,6 +173,19 @@ std::string mutate(const std::string& seed_input, std::mt19937_64& rng, bool tex
   return bytes;
 }
 
+//! The same within one region of the input, spliced back: a bank is ~3.7 MB of atom shape
+//! values whose damage its checksums catch at once, around ~60 kB of structure (HDF5's
+//! superblock, object headers, attributes, the small tables) where damage tests the reader;
+//! so half the inputs are mutated in the first 16 kB, a quarter in the last 64 kB.
+std::string mutate_structure(const std::string& seed_input, std::mt19937_64& rng) {
+  const std::size_t size = seed_input.size(), head = std::min<std::size_t>(size, 16 << 10),
+                    tail = std::min<std::size_t>(size, 64 << 10);
+  const std::size_t region = rng() % 4;
+  const std::size_t begin = region < 2 ? 0 : region == 2 ? size - tail : 0;
+  const std::size_t end = region < 2 ? head : size;
+  return seed_input.substr(0, begin) + mutate(seed_input.substr(begin, end - begin), rng, false, {}) + seed_input.substr(end);
+}
+
 // ---------------------------------------------------------------- seed inputs
 
 struct Corpus {
@@ -235,6 +254,25 @@ std::string integer_voltage_record(const fs::path& scratch) {
   return read_file(file);
 }
 
+//! The known device of the inverse tests with 20 us records and the quick prior (a bank of
+//! 50 records in seconds: tests/support/known_device*.toml).
+Study bank_device(const fs::path& source, const fs::path& scratch) {
+  const std::string text = "duration_s = 20e-6\n" + read_file(source / "tests/support/known_device.toml") + "[inverse]\n" +
+                           read_file(source / "tests/support/known_device_quick_prior.toml");
+  return parse_study(text, (scratch / "device.toml").string(), std::nullopt);
+}
+
+//! A bank of that device, made here once (a few seconds), as the seed input.
+std::string bank_seed(const fs::path& source, const fs::path& scratch) {
+  const Study device = bank_device(source, scratch);
+  const fs::path journal = scratch / "bank.h5.journal", bank = scratch / "bank.h5";
+  CalibrationOptions quiet;
+  quiet.show_progress = false;
+  write_calibration_bank(bank.string(), run_calibration(device, journal.string(), quiet));
+  fs::remove(journal);
+  return read_file(bank);
+}
+
 Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::path& scratch) {
   Corpus c;
   if (reader == "study") {
@@ -280,6 +318,9 @@ Corpus corpus_for(const std::string& reader, const fs::path& source, const fs::p
     c.inputs.push_back(csv_of("t,V", 80, [](int j, int) { return 1e-3 * std::sin(0.7 * j) + 1e-4 * std::cos(2.3 * j); }, 2));
     for (std::string& seed : hdf5_seeds(scratch, "2e-6")) c.inputs.push_back(std::move(seed));  // 101 samples
     c.inputs.push_back(integer_voltage_record(scratch));
+  } else if (reader == "bank") {
+    c.inputs = {bank_seed(source, scratch)};
+    c.text = false;
   }
   return c;
 }
@@ -396,11 +437,31 @@ void read_record_input(const fs::path& file) {
   }
 }
 
+//! What invert does with a bank (command_invert.cpp) and calibrate --refit: read it, refuse
+//! one made for another device, rebuild its atoms; and the refit's reading of its records.
+void read_bank_input(const fs::path& file, const InverseSetup& setup, std::size_t execution) {
+  if (execution % 4 == 3) {
+    for (const CalibrationSample& s : read_calibration_bank_records(file.string(), setup).samples)
+      require_finite(s.stiffness, "a record's stiffnesses");
+    return;
+  }
+  const StoredBank bank = read_calibration_bank(file.string());
+  if (!bank.identity.differences(setup.identity).empty()) throw InputError(file.string() + ": made for another device");
+  const std::unique_ptr<AtomLibrary> atoms = build_atom_library(setup, bank.atoms);
+  AtomParameters atom;
+  atom.stiffness_n_per_m = std::sqrt(atoms->min_stiffness() * atoms->max_stiffness());
+  atom.load_n = setup.device.asperity.normal_load_n;
+  AtomValues value;
+  atoms->model().evaluate(atom, setup.device.damping_rate_per_s(), value, true);
+  require_finite(value.u, "an atom");
+  require_finite(value.d_lnk, "an atom's derivative");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5|record|netlist RUNS [SEED]\n");
+    std::fprintf(stderr, "usage: fuzz_readers study|surface|csv|hdf5|record|netlist|bank RUNS [SEED]\n");
     return 2;
   }
   const std::string reader = argv[1];
@@ -416,17 +477,22 @@ int main(int argc, char** argv) {
 
   const Corpus corpus = corpus_for(reader, source, scratch);
   if (corpus.inputs.empty()) {
-    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5, record, netlist)\n", reader.c_str());
+    std::fprintf(stderr, "unknown reader '%s' (study, surface, csv, hdf5, record, netlist, bank)\n", reader.c_str());
     return 2;
   }
-  const std::string extension = reader == "hdf5" ? ".h5" : reader == "csv" ? ".csv" : reader == "netlist" ? ".cir" : ".toml";
+  const std::optional<InverseSetup> setup =
+      reader == "bank" ? std::optional(inverse_setup(bank_device(source, scratch))) : std::nullopt;
+  const std::string extension = reader == "hdf5" || reader == "bank" ? ".h5"
+                                : reader == "csv"                    ? ".csv"
+                                : reader == "netlist"                ? ".cir"
+                                                                     : ".toml";
   std::size_t accepted = 0, refused = 0, model_errors = 0, found = 0, netlists_accepted = 0;
   for (std::size_t i = 0; i < runs; ++i) {
     std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + i);
     const std::string& base = corpus.inputs[rng() % corpus.inputs.size()];
     // A record is a CSV or an HDF5 file, told apart by its name as invert tells them apart.
     const bool binary = !corpus.text || is_hdf5(base);
-    const std::string bytes = mutate(base, rng, !binary, corpus.inputs);
+    const std::string bytes = reader == "bank" ? mutate_structure(base, rng) : mutate(base, rng, !binary, corpus.inputs);
     const fs::path input = scratch / ("input" + (reader == "record" ? std::string(binary ? ".h5" : ".csv") : extension));
     write_file(input, bytes);
     write_file(findings / ("current." + reader), bytes);  // what a crash leaves behind
@@ -442,6 +508,7 @@ int main(int argc, char** argv) {
       else if (reader == "csv") read_csv_input(input, i);
       else if (reader == "netlist") read_netlist_input(input, netlists_accepted);
       else if (reader == "record") read_record_input(input);
+      else if (reader == "bank") read_bank_input(input, *setup, i);
       else read_hdf5_input(input, i);
       ++accepted;
     } catch (const InputError&) {

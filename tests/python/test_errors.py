@@ -109,3 +109,36 @@ def test_invert_refuses_a_constant_record_naming_it(stengmc):
     # It stopped with the internal "count_posterior: the noise level must be > 0".
     with pytest.raises(stengmc.InputError, match="my_record: the voltage is 0 V at every sample"):
         stengmc.invert(np.zeros(5001), known=source(DEMO), sample_rate_hz=100e6, name="my_record")
+
+
+ENSEMBLE = "studies/ensembles/identifiability_quick.toml"
+
+
+@pytest.mark.parametrize("threads", [100000, 1025, -1, 2**64])
+def test_threads_out_of_range_is_an_input_error_naming_the_argument(stengmc, threads):
+    # 100000 threads made the thread library crash the interpreter (SIGSEGV); 2**64 came out
+    # as pybind11's "incompatible function arguments". Refused before anything runs.
+    study = stengmc.load_study(source(ENSEMBLE))
+    with pytest.raises(stengmc.InputError, match=rf"threads = {threads}: expected a whole number from 0 to 1024"):
+        study.run_ensemble(threads=threads)
+    with pytest.raises(stengmc.InputError, match="threads"):
+        stengmc.run_ensemble(study, threads=threads)
+
+
+@pytest.mark.parametrize("realisation", [-1, 2**63, 2**64])
+def test_a_realisation_out_of_range_is_an_input_error_naming_the_argument(stengmc, realisation):
+    # pybind11's raw "incompatible function arguments" before: the id is an unsigned 64-bit
+    # integer in C++, and files store it as int64 (the command line's --realisation range).
+    study = stengmc.load_study(source(FIG2))
+    with pytest.raises(stengmc.InputError,
+                       match=rf"realisation = {realisation}: expected a whole number from 0 to {2**63 - 1}"):
+        study.run(realisation=realisation)
+
+
+@pytest.mark.parametrize("value", [1.5, "3", None, True])
+def test_arguments_that_are_not_whole_numbers_are_type_errors_naming_them(stengmc, value):
+    study = stengmc.load_study(source(FIG2))
+    with pytest.raises(TypeError, match=r"realisation = .*: expected a whole number"):
+        study.run(realisation=value)
+    with pytest.raises(TypeError, match=r"threads = .*: expected a whole number"):
+        stengmc.load_study(source(ENSEMBLE)).run_ensemble(threads=value)
