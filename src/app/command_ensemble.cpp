@@ -171,7 +171,7 @@ void run_ensemble_study(const StudyFile& study, const std::string& out_option, b
     for (std::size_t g = 0; g < grid.size(); ++g) std::filesystem::remove(journal_path(out, g, grid.size()));
   print_ensemble_results(study, grid, options.only.has_value());
   std::printf("wrote %s\n", out.c_str());
-  if (figures && render_figures(out) != 0)
+  if (figures && render_figures(out, options.figure) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");
 }
 

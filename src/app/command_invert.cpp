@@ -33,6 +33,7 @@ struct InvertOptions {
   std::string bank;
   std::string out;
   bool figures = false;
+  FigureOptions figure;
   int threads = 0;
   LimitOptions limits;
 };
@@ -202,7 +203,7 @@ void run(const InvertOptions& options) {
   write_inverse_file(options.out, context, inversions, pooled);
   print_summary(inversions, pooled);
   std::printf("wrote %s\n", options.out.c_str());
-  if (options.figures && render_figures(options.out) != 0)
+  if (options.figures && render_figures(options.out, options.figure) != 0)
     throw Error("figure rendering failed (see the messages above); the HDF5 output is complete");
 }
 
@@ -225,7 +226,9 @@ void add_invert_command(CLI::App& app) {
   command->add_option("-o,--out", options->out, "Output HDF5 file (/inverse)")
       ->required()
       ->check(non_empty_path());
-  command->add_flag("-f,--figures", options->figures, "Also render the PNG figure (spectrum with the fitted lines, P(n), stiffness law)");
+  CLI::Option* figures = command->add_flag("-f,--figures", options->figures,
+                                           "Also render the figure (spectrum with the fitted lines, P(n), stiffness law)");
+  add_figure_options(command, figures, options->figure);
   command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });

@@ -68,17 +68,25 @@ int render_figures(const std::string& h5_path, const FigureOptions& options) {
   return std::system(command.c_str());
 }
 
+void add_figure_options(CLI::App* command, CLI::Option* figures, FigureOptions& options) {
+  CLI::Option* format = command->add_option("--figure-format", options.format, "png, pdf or svg (pdf and svg are vector)")
+                            ->check(CLI::IsMember({"png", "pdf", "svg"}))
+                            ->capture_default_str();
+  CLI::Option* dpi = command->add_option("--dpi", options.dpi, "Resolution of PNG figures (and of pdf/svg's raster parts)")
+                         ->check(CLI::Range(20, 1200))
+                         ->capture_default_str();
+  if (figures != nullptr) {
+    format->needs(figures);
+    dpi->needs(figures);
+  }
+}
+
 void add_plot_command(CLI::App& app) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto options = std::make_shared<FigureOptions>();
   CLI::App* command = app.add_subcommand("plot", "Render the figures of output files (beside each file)");
   command->add_option("files", *files, "HDF5 files written by stengmc")->required()->check(CLI::ExistingFile);
-  command->add_option("--figure-format", options->format, "png, pdf or svg (pdf and svg are vector)")
-      ->check(CLI::IsMember({"png", "pdf", "svg"}))
-      ->capture_default_str();
-  command->add_option("--dpi", options->dpi, "Resolution of PNG figures (and of pdf/svg's raster parts)")
-      ->check(CLI::Range(20, 1200))
-      ->capture_default_str();
+  add_figure_options(command, nullptr, *options);
   command->callback([files, options] {
     for (const auto& f : *files) {
       check_plottable(f);

@@ -26,6 +26,7 @@ struct RunOptions {
   std::uint64_t realisation = 0;
   bool realisation_given = false;
   bool figures = false;
+  FigureOptions figure;
   EnsembleCommandOptions ensemble;
   std::string shard;  //!< --shard i/n as given
   LimitOptions limits;
@@ -52,7 +53,7 @@ void run_single(const RunOptions& options) {
   if (result.spectra) std::printf("%s", format_spectral_summary(*result.spectra).c_str());
   for (const std::string& note : result.notes) std::printf("NOTE: %s\n", note.c_str());
   std::printf("wrote %s\n", out.c_str());
-  if (options.figures && render_figures(out) != 0)
+  if (options.figures && render_figures(out, options.figure) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");
 }
 
@@ -68,6 +69,7 @@ void run(const RunOptions& options) {
     EnsembleCommandOptions ensemble = options.ensemble;
     ensemble.limits = options.limits.limits();
     ensemble.shard = shard;
+    ensemble.figure = options.figure;
     run_ensemble_study(base, options.out, options.figures, ensemble);
     return;
   }
@@ -103,7 +105,9 @@ void add_run_command(CLI::App& app) {
       "Run this one realisation of a random surface and write its full run file (also for an [ensemble] "
       "study; default 0, and an ensemble study without it runs the ensemble)")
       ->check(CLI::Range(std::uint64_t{0}, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
-  command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
+  CLI::Option* figures = command->add_flag("-f,--figures", options->figures,
+                                           "Also render figures beside the output (needs python3-h5py, matplotlib)");
+  add_figure_options(command, figures, options->figure);
   command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (default 0: OMP_NUM_THREADS when set, else every core)")
       ->capture_default_str()
       ->check(CLI::Range(0, MAX_THREADS));

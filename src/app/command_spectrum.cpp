@@ -26,6 +26,7 @@ struct SpectrumOptions {
   std::string out;
   std::string settings_file;
   bool figures = false;
+  FigureOptions figure;
   LimitOptions limits;
 };
 
@@ -88,7 +89,7 @@ void run(const SpectrumOptions& options) {
   if (signal.expected_frequency_hz.empty())
     std::printf("(no /asperity/natural_frequency in the input: identifiability not assessed)\n");
   std::printf("wrote %s\n", options.out.c_str());
-  if (options.figures && render_figures(options.out) != 0) throw Error("figure rendering failed; the HDF5 output is complete");
+  if (options.figures && render_figures(options.out, options.figure) != 0) throw Error("figure rendering failed; the HDF5 output is complete");
 }
 
 }  // namespace
@@ -105,7 +106,8 @@ void add_spectrum_command(CLI::App& app) {
       ->check(non_empty_path());
   command->add_option("-s,--settings", options->settings_file, "A study or TOML file whose [spectrum] table to use (default: the defaults)")
       ->check(CLI::ExistingFile);
-  command->add_flag("-f,--figures", options->figures, "Also render PNG figures");
+  CLI::Option* figures = command->add_flag("-f,--figures", options->figures, "Also render figures");
+  add_figure_options(command, figures, options->figure);
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }

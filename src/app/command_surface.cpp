@@ -30,6 +30,7 @@ struct SurfaceOptions {
   std::string study_file;
   std::string out;
   bool figures = false;
+  FigureOptions figure;
   LimitOptions limits;
 };
 
@@ -85,7 +86,7 @@ void run(const SurfaceOptions& options) {
   write_surface_file(out, provenance, examination);
   std::printf("%s", format_surface_summary(examination).c_str());
   std::printf("wrote %s\n", out.c_str());
-  if (options.figures && render_figures(out) != 0)
+  if (options.figures && render_figures(out, options.figure) != 0)
     throw std::runtime_error("figure rendering failed (see the messages above); the HDF5 output is complete");
 }
 
@@ -112,7 +113,9 @@ void add_surface_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (default: results/<surface>_surface.h5)")
       ->check(non_empty_path());
-  command->add_flag("-f,--figures", options->figures, "Also render PNG figures beside the output (needs python3-h5py, matplotlib)");
+  CLI::Option* figures = command->add_flag("-f,--figures", options->figures,
+                                           "Also render figures beside the output (needs python3-h5py, matplotlib)");
+  add_figure_options(command, figures, options->figure);
   add_limit_options(command, options->limits);
   command->callback([options] { run(*options); });
 }

@@ -246,5 +246,25 @@ TEST(NamedErrors, BareCommandPrintsTheHelp) {
   EXPECT_NE(r.output.find("calibrate"), std::string::npos) << r.output;
 }
 
+//! --figures writes the format and resolution asked (the same options as `stengmc plot`);
+//! those options without --figures are a usage error, not silently ignored.
+TEST(NamedErrors, FigureOptionsChooseTheFormatAndNeedFigures) {
+  ScratchDir scratch("figure-options");
+  const std::string study = scratch.write(
+      "study.toml", "duration_s = 2e-6\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\nbelt_velocity_m_per_s = 10\n"
+                    "[surface]\n[surface.defaults]\nlength_m = 50e-6\n[[surface.asperity]]\nstiffness_n_per_m = 75\n");
+  const auto svg = run_cli("run " + study + " -o " + scratch.file("out.h5") + " --figures --figure-format svg --dpi 80", scratch);
+  ASSERT_EQ(svg.exit_code, 0) << svg.output;
+  std::ifstream figure(scratch.file("out.svg"));
+  std::string head(200, '\0');
+  figure.read(head.data(), static_cast<std::streamsize>(head.size()));
+  EXPECT_NE(head.find("<svg"), std::string::npos) << head;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("out.png")));
+  const auto alone = run_cli("run " + study + " -o " + scratch.file("other.h5") + " --figure-format pdf", scratch);
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--figure-format requires --figures"), std::string::npos) << alone.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("other.h5")));
+}
+
 }  // namespace
 }  // namespace stengmc
