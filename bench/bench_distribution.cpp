@@ -172,7 +172,8 @@ int main() {
   const double write_shards_s = seconds_since(start);
   start = Clock::now();
   for (int s = 0; s < SHARDS; ++s)
-    checksum += stengmc::read_journal_file((scratch.path / ("shard" + std::to_string(s))).string()).records.size();
+    checksum += stengmc::read_journal_file((scratch.path / ("shard" + std::to_string(s))).string(), "bench shard", "")
+                    .records.size();
   const double read_shards_s = seconds_since(start);
   std::printf("3. shards: writing 10^5 records as %d shard files %.2f s (in parallel on the array's nodes), reading "
               "them back in merge %.2f s: %.3f %% of the compute\n\n",
