@@ -51,10 +51,13 @@ def sd_log(k):
 
 
 def bank_scores(path):
-    """Per bank record: the calibrated P(n) as invert computes it (raw posterior through the
-    confusion), and the true count: for the smoothed conformal sets."""
+    """Per bank record: the calibrated P(n) as invert computes it (raw posterior through its
+    fit class's confusion), and the true count: for the smoothed conformal sets."""
     with h5py.File(path, "r") as f:
-        conf = f["maps/confusion"][:]
+        confusions = [f["maps/fits/confusion"][:], f["maps/misfits/confusion"][:]]
+        boundary = float(f["maps"].attrs["misfit_ratio"])
+        noise = f["records/noise_sigma"][:]
+        residual = f["records/residual_sigma"][:]
         cmin = int(f["maps"].attrs["count_min"])
         valid = f["records/valid"][:]
         true_n = f["records/true_count"][:]
@@ -65,6 +68,8 @@ def bank_scores(path):
     for j in range(len(valid)):
         if not valid[j]:
             continue
+        misfit = residual[j] / noise[j] if noise[j] > 0 else 1.0
+        conf = confusions[1 if misfit > boundary else 0]
         o = orders[off[j]:off[j + 1]].astype(int)
         e = evidence[off[j]:off[j + 1]]
         raw = np.exp(e - e.max())

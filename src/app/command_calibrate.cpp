@@ -113,6 +113,13 @@ void run(const CalibrateOptions& options) {
   std::printf("  records: %zu valid, %zu invalid (an asperity reached l, outside the device's range, or the estimator "
               "could not answer)%s\n", bank.maps.records,
               invalid, bank.resumed ? (", " + std::to_string(bank.resumed) + " resumed from the journal").c_str() : "");
+  {
+    const ClassMaps& fits = bank.maps.of(FitClass::fits);
+    const ClassMaps& misfits = bank.maps.of(FitClass::misfits);
+    std::printf("  fit classes: %zu records fit their noise (residual <= %.3g x the noise above the lines), %zu do not%s\n",
+                fits.records, bank.maps.misfit_ratio, misfits.records,
+                fits.pooled || misfits.pooled ? " (a class of fewer than 60 records takes every record's maps)" : "");
+  }
   std::printf("On the bank's own records (in-sample; the naive FFT count at its best threshold, %g x the local floor):\n%s",
               bank.maps.naive_threshold, bank_table(bank).c_str());
   if (!options.refit && bank.resumed == 0 && bank.maps.records > 0) {

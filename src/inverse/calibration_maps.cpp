@@ -10,7 +10,7 @@ namespace stengmc {
 
 namespace {
 
-constexpr int MAX_OFFSET = 3;                 // confusion offsets n - n-hat considered
+constexpr long JEFFREYS_OFFSETS = 3;          // offsets n - n-hat given the prior's 1/2
 constexpr double JEFFREYS = 0.5;
 constexpr std::size_t CONFUSION_RECORDS = 60;  // pooled until this many
 // Scale floor (relative, in ln k): only guards against a zero standard error. The scores are
@@ -31,17 +31,100 @@ double conformal_quantile(std::vector<double> scores, double level) {
 
 //! Indices of samples whose n-hat lies within the smallest window around m holding `least`
 //! samples that `keep` accepts (or all of them).
-template <typename Keep>
-std::vector<const CalibrationSample*> neighbourhood(const std::vector<CalibrationSample>& samples, std::size_t m,
-                                                   std::size_t least, Keep keep) {
-  std::vector<const CalibrationSample*> out;
+using Samples = std::vector<const CalibrationSample*>;
+
+//! The samples whose n-hat lies within the smallest window around m holding `least` of them
+//! (or all of them).
+Samples neighbourhood(const Samples& samples, std::size_t m, std::size_t least) {
+  Samples out;
   for (std::size_t w = 0; w <= 64; ++w) {
     out.clear();
-    for (const CalibrationSample& s : samples)
-      if (s.valid && keep(s) && (s.count + w >= m && s.count <= m + w)) out.push_back(&s);
+    for (const CalibrationSample* s : samples)
+      if (s->count + w >= m && s->count <= m + w) out.push_back(s);
     if (out.size() >= least) break;
   }
   return out;
+}
+
+//! The maps of one class, learnt from `samples` (valid ones).
+ClassMaps fit_class_maps(const Samples& samples, const InversePrior& prior) {
+  ClassMaps maps;
+  maps.records = samples.size();
+  const std::size_t counts = prior.count_max - prior.count_min + 1;
+  const long max_offset = static_cast<long>(counts);
+
+  // Count confusion.
+  maps.confusion.assign(counts, std::vector<double>(counts, 0.0));
+  for (std::size_t mi = 0; mi < counts; ++mi) {
+    const std::size_t m = prior.count_min + mi;
+    std::vector<double> offsets(2 * static_cast<std::size_t>(max_offset) + 1, 0.0);
+    for (long d = -JEFFREYS_OFFSETS; d <= JEFFREYS_OFFSETS; ++d) offsets[static_cast<std::size_t>(d + max_offset)] = JEFFREYS;
+    for (const CalibrationSample* s : neighbourhood(samples, m, CONFUSION_RECORDS)) {
+      const long d = std::clamp(static_cast<long>(s->true_count()) - static_cast<long>(s->count), -max_offset, max_offset);
+      offsets[static_cast<std::size_t>(d + max_offset)] += 1.0;
+    }
+    double total = 0.0;
+    for (long d = -max_offset; d <= max_offset; ++d) {
+      const long n = static_cast<long>(m) + d;
+      if (n < static_cast<long>(prior.count_min) || n > static_cast<long>(prior.count_max)) continue;
+      maps.confusion[mi][static_cast<std::size_t>(n) - prior.count_min] = offsets[static_cast<std::size_t>(d + max_offset)];
+      total += offsets[static_cast<std::size_t>(d + max_offset)];
+    }
+    for (double& p : maps.confusion[mi]) p /= total;
+  }
+
+  // Population intervals: normalised scores, Mondrian by bins of n-hat.
+  const std::size_t bins = (counts + POPULATION_BIN_COUNTS - 1) / POPULATION_BIN_COUNTS;
+  maps.median_score_quantile.assign(bins, 0.0);
+  maps.sd_score_quantile.assign(bins, 0.0);
+  for (std::size_t b = 0; b < bins; ++b) {
+    const std::size_t first = prior.count_min + b * POPULATION_BIN_COUNTS, last = first + POPULATION_BIN_COUNTS - 1;
+    std::vector<double> median_scores, sd_scores, all_median, all_sd;
+    for (const CalibrationSample* s : samples) {
+      // The population needs lines on both sides: nothing slides in the record, or nothing was found.
+      if (s->count == 0 || s->true_count() == 0) continue;
+      const bool in_bin = s->count >= first && s->count <= last;
+      const double m = std::abs(std::log(s->median / s->true_median())) / median_log_scale(s->stiffness, s->log_stiffness_se);
+      all_median.push_back(m);
+      if (in_bin) median_scores.push_back(m);
+      if (s->count >= 2 && s->true_count() >= 2) {
+        const double d = std::abs(s->sd_log - s->true_sd_log()) / sd_log_scale(s->stiffness, s->log_stiffness_se);
+        all_sd.push_back(d);
+        if (in_bin) sd_scores.push_back(d);
+      }
+    }
+    constexpr std::size_t FEWEST = 20;
+    maps.median_score_quantile[b] = conformal_quantile(median_scores.size() >= FEWEST ? median_scores : all_median, INTERVAL_LEVEL);
+    maps.sd_score_quantile[b] = conformal_quantile(sd_scores.size() >= FEWEST ? sd_scores : all_sd, INTERVAL_LEVEL);
+  }
+
+  // Line errors: records counted exactly, lines paired in order (the optimal matching for
+  // a convex cost in one dimension).
+  std::vector<double> z;
+  for (const CalibrationSample* s : samples) {
+    if (s->count != s->true_count()) continue;
+    std::vector<double> truth = s->true_stiffness;
+    std::sort(truth.begin(), truth.end());
+    for (std::size_t i = 0; i < s->count; ++i)
+      if (s->log_stiffness_se[i] > 0.0) z.push_back(std::abs(std::log(s->stiffness[i] / truth[i])) / s->log_stiffness_se[i]);
+  }
+  if (!z.empty()) maps.line_error_scale = conformal_quantile(z, INTERVAL_LEVEL) / Z90;
+  return maps;
+}
+
+//! The fit classes' boundary: MISFIT_QUANTILE of noise_misfit over the records counted right
+//! below the prior's largest count, at least DEFAULT_MISFIT_RATIO. A count at the prior's top
+//! can be right because the prior stops there: a fit the atoms cannot make adds atoms up to
+//! that limit whatever the truth (in the broadened test bank, 30 of the 38 right counts at the
+//! top misfit), so those records say nothing of how well right answers fit.
+double misfit_boundary(const Samples& samples, std::size_t count_max) {
+  std::vector<double> right;
+  for (const CalibrationSample* s : samples)
+    if (s->count == s->true_count() && s->count < count_max) right.push_back(noise_misfit(s->residual_sigma_v, s->noise_sigma_v));
+  if (right.empty()) return DEFAULT_MISFIT_RATIO;
+  std::sort(right.begin(), right.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(MISFIT_QUANTILE * static_cast<double>(right.size())));
+  return std::max(DEFAULT_MISFIT_RATIO, right[std::clamp<std::size_t>(rank, 1, right.size()) - 1]);
 }
 
 }  // namespace
@@ -74,71 +157,32 @@ double sd_log_scale(const std::vector<double>& k, const std::vector<double>& se)
   return std::max(SCALE_FLOOR, std::sqrt(sum));
 }
 
+double noise_misfit(double residual_sigma_v, double noise_sigma_v) {
+  return noise_sigma_v > 0.0 && std::isfinite(residual_sigma_v) ? residual_sigma_v / noise_sigma_v : 1.0;
+}
+
 CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& samples, const InversePrior& prior) {
   CalibrationMaps maps;
   maps.count_min = prior.count_min;
   maps.count_max = prior.count_max;
-  const std::size_t counts = prior.count_max - prior.count_min + 1;
-  for (const CalibrationSample& s : samples) maps.records += s.valid;
+  Samples valid;
+  for (const CalibrationSample& s : samples)
+    if (s.valid) valid.push_back(&s);
+  maps.records = valid.size();
   if (maps.records == 0) throw Error("calibration: no valid record to fit the maps on");
-  auto all = [](const CalibrationSample&) { return true; };
 
-  // Count confusion.
-  maps.confusion.assign(counts, std::vector<double>(counts, 0.0));
-  for (std::size_t mi = 0; mi < counts; ++mi) {
-    const std::size_t m = prior.count_min + mi;
-    std::vector<double> offsets(2 * MAX_OFFSET + 1, JEFFREYS);
-    for (const CalibrationSample* s : neighbourhood(samples, m, CONFUSION_RECORDS, all)) {
-      const long d = std::clamp(static_cast<long>(s->true_count()) - static_cast<long>(s->count), -static_cast<long>(MAX_OFFSET),
-                                static_cast<long>(MAX_OFFSET));
-      offsets[static_cast<std::size_t>(d + MAX_OFFSET)] += 1.0;
-    }
-    double total = 0.0;
-    for (int d = -MAX_OFFSET; d <= MAX_OFFSET; ++d) {
-      const long n = static_cast<long>(m) + d;
-      if (n < static_cast<long>(prior.count_min) || n > static_cast<long>(prior.count_max)) continue;
-      maps.confusion[mi][static_cast<std::size_t>(n) - prior.count_min] = offsets[static_cast<std::size_t>(d + MAX_OFFSET)];
-      total += offsets[static_cast<std::size_t>(d + MAX_OFFSET)];
-    }
-    for (double& p : maps.confusion[mi]) p /= total;
+  // The fit classes; a class with too few records of its own for a confusion is learnt from
+  // all of them (on the ideal device nearly every record fits).
+  maps.misfit_ratio = misfit_boundary(valid, prior.count_max);
+  std::array<Samples, FIT_CLASSES> by_class;
+  for (const CalibrationSample* s : valid)
+    by_class[static_cast<std::size_t>(maps.fit_class(noise_misfit(s->residual_sigma_v, s->noise_sigma_v)))].push_back(s);
+  for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
+    const bool pooled = by_class[c].size() < CONFUSION_RECORDS;
+    maps.classes[c] = fit_class_maps(pooled ? valid : by_class[c], prior);
+    maps.classes[c].records = by_class[c].size();
+    maps.classes[c].pooled = pooled;
   }
-
-  // Population intervals: normalised scores, Mondrian by bins of n-hat.
-  const std::size_t bins = (counts + POPULATION_BIN_COUNTS - 1) / POPULATION_BIN_COUNTS;
-  maps.median_score_quantile.assign(bins, 0.0);
-  maps.sd_score_quantile.assign(bins, 0.0);
-  for (std::size_t b = 0; b < bins; ++b) {
-    const std::size_t first = prior.count_min + b * POPULATION_BIN_COUNTS, last = first + POPULATION_BIN_COUNTS - 1;
-    std::vector<double> median_scores, sd_scores, all_median, all_sd;
-    for (const CalibrationSample& s : samples) {
-      // The population needs lines on both sides: nothing slides in the record, or nothing was found.
-      if (!s.valid || s.count == 0 || s.true_count() == 0) continue;
-      const bool in_bin = s.count >= first && s.count <= last;
-      const double m = std::abs(std::log(s.median / s.true_median())) / median_log_scale(s.stiffness, s.log_stiffness_se);
-      all_median.push_back(m);
-      if (in_bin) median_scores.push_back(m);
-      if (s.count >= 2 && s.true_count() >= 2) {
-        const double d = std::abs(s.sd_log - s.true_sd_log()) / sd_log_scale(s.stiffness, s.log_stiffness_se);
-        all_sd.push_back(d);
-        if (in_bin) sd_scores.push_back(d);
-      }
-    }
-    constexpr std::size_t FEWEST = 20;
-    maps.median_score_quantile[b] = conformal_quantile(median_scores.size() >= FEWEST ? median_scores : all_median, INTERVAL_LEVEL);
-    maps.sd_score_quantile[b] = conformal_quantile(sd_scores.size() >= FEWEST ? sd_scores : all_sd, INTERVAL_LEVEL);
-  }
-
-  // Line errors: records counted exactly, lines paired in order (the optimal matching for
-  // a convex cost in one dimension).
-  std::vector<double> z;
-  for (const CalibrationSample& s : samples) {
-    if (!s.valid || s.count != s.true_count()) continue;
-    std::vector<double> truth = s.true_stiffness;
-    std::sort(truth.begin(), truth.end());
-    for (std::size_t i = 0; i < s.count; ++i)
-      if (s.log_stiffness_se[i] > 0.0) z.push_back(std::abs(std::log(s.stiffness[i] / truth[i])) / s.log_stiffness_se[i]);
-  }
-  if (!z.empty()) maps.line_error_scale = conformal_quantile(z, INTERVAL_LEVEL) / Z90;
 
   // The naive count's best threshold, and the bank's own figures.
   const std::size_t thresholds = samples.front().naive_counts.size();
@@ -175,6 +219,9 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
 CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const CalibrationMaps* maps, const InversePrior& prior) {
   CalibratedEstimate out;
   out.calibrated = maps != nullptr;
+  out.misfit = noise_misfit(e.residual_sigma_v, e.noise.sigma_v);
+  out.fit_class = maps ? maps->fit_class(out.misfit) : (out.misfit > DEFAULT_MISFIT_RATIO ? FitClass::misfits : FitClass::fits);
+  const ClassMaps* own = maps ? &maps->of(out.fit_class) : nullptr;
   const std::size_t counts = prior.count_max - prior.count_min + 1;
   for (std::size_t i = 0; i < counts; ++i) out.counts.push_back(prior.count_min + i);
   out.probability.assign(counts, 0.0);
@@ -186,7 +233,7 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
       out.probability[m - prior.count_min] += p;
       continue;
     }
-    for (std::size_t i = 0; i < counts; ++i) out.probability[i] += p * maps->confusion[m - prior.count_min][i];
+    for (std::size_t i = 0; i < counts; ++i) out.probability[i] += p * own->confusion[m - prior.count_min][i];
   }
   std::size_t mode = 0;
   for (std::size_t i = 1; i < counts; ++i)
@@ -207,7 +254,7 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
   out.median = e.median_stiffness_n_per_m;
   out.sd_log = e.sd_log_stiffness;
   out.sd_known = e.count >= 2;
-  const double scale = maps ? maps->line_error_scale : 1.0;
+  const double scale = own ? own->line_error_scale : 1.0;
   for (const EstimatedLine& line : e.lines) {
     out.line_low.push_back(line.stiffness_n_per_m * std::exp(-Z90 * scale * line.log_stiffness_se));
     out.line_high.push_back(line.stiffness_n_per_m * std::exp(Z90 * scale * line.log_stiffness_se));
@@ -216,10 +263,10 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
     const std::size_t bin = (e.count - prior.count_min) / POPULATION_BIN_COUNTS;
     std::vector<double> k, se;
     for (const EstimatedLine& line : e.lines) k.push_back(line.stiffness_n_per_m), se.push_back(line.log_stiffness_se);
-    const double h = maps->median_score_quantile[bin] * median_log_scale(k, se);
+    const double h = own->median_score_quantile[bin] * median_log_scale(k, se);
     out.median_low = out.median * std::exp(-h);
     out.median_high = out.median * std::exp(h);
-    const double hs = maps->sd_score_quantile[bin] * sd_log_scale(k, se);
+    const double hs = own->sd_score_quantile[bin] * sd_log_scale(k, se);
     out.sd_log_low = std::max(0.0, out.sd_log - hs);
     out.sd_log_high = out.sd_log + hs;
     out.population_intervals = true;

@@ -105,10 +105,15 @@ AtomShapeData decode_atoms(BankDecoder& in) {
 void encode_maps(ByteEncoder& out, const CalibrationMaps& m) {
   out.u64(m.count_min);
   out.u64(m.count_max);
-  out.rows(m.confusion);
-  out.vector(m.median_score_quantile);
-  out.vector(m.sd_score_quantile);
-  out.f64(m.line_error_scale);
+  out.f64(m.misfit_ratio);
+  for (const ClassMaps& c : m.classes) {
+    out.rows(c.confusion);
+    out.vector(c.median_score_quantile);
+    out.vector(c.sd_score_quantile);
+    out.f64(c.line_error_scale);
+    out.u64(c.records);
+    out.u64(c.pooled ? 1 : 0);
+  }
   out.u64(m.naive_threshold_index);
   out.f64(m.naive_threshold);
   out.u64(m.records);
@@ -122,10 +127,15 @@ CalibrationMaps decode_maps(BankDecoder& in) {
   CalibrationMaps m;
   m.count_min = in.whole();
   m.count_max = in.whole();
-  m.confusion = in.rows();
-  m.median_score_quantile = in.vector();
-  m.sd_score_quantile = in.vector();
-  m.line_error_scale = in.number();
+  m.misfit_ratio = in.number();
+  for (ClassMaps& c : m.classes) {
+    c.confusion = in.rows();
+    c.median_score_quantile = in.vector();
+    c.sd_score_quantile = in.vector();
+    c.line_error_scale = in.number();
+    c.records = in.whole();
+    c.pooled = in.whole() != 0;
+  }
   m.naive_threshold_index = in.whole();
   m.naive_threshold = in.number();
   m.records = in.whole();

@@ -1,5 +1,6 @@
 #include "io/calibration_bank_file.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -23,11 +24,12 @@ namespace stengmc {
 namespace {
 
 constexpr const char* FILE_TYPE = "stengmc-calibration-bank";
+// 4: the maps learnt apart for the two fit classes (/maps/fits, /maps/misfits; issue 23).
 // 3: the atoms as a shape family (issue 23; inverse/atom_shapes.hpp), every table and the
 // numeric attributes of /atoms and /maps with their checksum (io/checksummed_tables.hpp).
 // 2 held the old atom table (with checksums), 1 that table without checksums: a damaged
 // bank was used silently.
-constexpr std::int64_t FORMAT_VERSION = 3;
+constexpr std::int64_t FORMAT_VERSION = 4;
 const std::string REMAKE = "make the bank again with stengmc calibrate";
 
 //! The numeric attributes of /atoms and /maps, in the order their checksum covers them.
@@ -35,9 +37,12 @@ const std::vector<std::string> ATOM_ATTRIBUTES = {"min_pi", "max_pi", "min_zeta"
                                                   "breakaway_samples", "check_error", "log_pi_step", "zeta_node_count",
                                                   "theta_step", "after_breakaway", "before_breakaway", "split_pi", "blend",
                                                   "tail_fit_span"};
-const std::vector<std::string> MAP_ATTRIBUTES = {"count_min", "count_max", "line_error_scale", "naive_threshold_index",
+const std::vector<std::string> MAP_ATTRIBUTES = {"count_min", "count_max", "misfit_ratio", "naive_threshold_index",
                                                  "naive_threshold", "records", "bank_count_rmse", "bank_exact_rate",
                                                  "bank_naive_rmse", "bank_naive_exact_rate"};
+const std::vector<std::string> CLASS_ATTRIBUTES = {"line_error_scale", "records", "pooled"};
+//! The fit classes' groups, in FitClass order.
+const std::array<std::string, FIT_CLASSES> CLASS_GROUPS = {"/maps/fits", "/maps/misfits"};
 
 //! An InputError saying the bank at `path` is damaged, and what to do.
 InputError damaged(const std::string& path, const std::string& what) {
@@ -185,15 +190,24 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
   const auto count = [](std::size_t n) { return static_cast<double>(n); };
 
   const CalibrationMaps& m = bank.maps;
-  write_checked(f, "/maps/confusion", m.confusion);
-  write_checked(f, "/maps/median_score_quantile", m.median_score_quantile);
-  write_checked(f, "/maps/sd_score_quantile", m.sd_score_quantile);
+  for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
+    const ClassMaps& own = m.classes[c];
+    const std::string& group = CLASS_GROUPS[c];
+    write_checked(f, group + "/confusion", own.confusion);
+    write_checked(f, group + "/median_score_quantile", own.median_score_quantile);
+    write_checked(f, group + "/sd_score_quantile", own.sd_score_quantile);
+    // In CLASS_ATTRIBUTES' order.
+    write_checked_attributes(f, group,
+                             {{"line_error_scale", own.line_error_scale},
+                              {"records", count(own.records), true},
+                              {"pooled", own.pooled ? 1.0 : 0.0, true}});
+  }
   write_checked(f, "/maps/naive_thresholds", naive_count_thresholds());
   // In MAP_ATTRIBUTES' order.
   write_checked_attributes(f, "/maps",
                            {{"count_min", count(m.count_min), true},
                             {"count_max", count(m.count_max), true},
-                            {"line_error_scale", m.line_error_scale},
+                            {"misfit_ratio", m.misfit_ratio},
                             {"naive_threshold_index", count(m.naive_threshold_index), true},
                             {"naive_threshold", naive_count_thresholds()[m.naive_threshold_index]},
                             {"records", count(m.records), true},
@@ -226,6 +240,10 @@ void check_bank_format(const std::string& path, const Hdf5Reader& f) {
     throw InputError(path + ": calibration bank format 2 holds the atoms as a table of stiffnesses, which this stengmc "
                      "no longer uses (its atoms are a family of shapes); this stengmc reads format " +
                      std::to_string(FORMAT_VERSION) + ": " + REMAKE);
+  if (*version == 3)
+    throw InputError(path + ": calibration bank format 3 holds one set of maps for every record, which this stengmc "
+                     "learns apart for records that fit their noise and records that do not; this stengmc reads format " +
+                     std::to_string(FORMAT_VERSION) + ": " + REMAKE);
   if (*version > FORMAT_VERSION)
     throw InputError(path + ": calibration bank format " + std::to_string(*version) + " is newer than this stengmc reads (" +
                      std::to_string(FORMAT_VERSION) + "); update stengmc, or " + REMAKE);
@@ -254,9 +272,6 @@ StoredBank read_identity_and_atoms(const std::string& path, const Hdf5Reader& f)
 //! The maps, checked against their count range.
 CalibrationMaps read_maps(const ChecksumReader& tables) {
   CalibrationMaps m;
-  m.confusion = tables.matrix("/maps/confusion");
-  m.median_score_quantile = tables.vector("/maps/median_score_quantile");
-  m.sd_score_quantile = tables.vector("/maps/sd_score_quantile");
   (void)tables.vector("/maps/naive_thresholds");  // verified: every table of a bank is
   const auto number = tables.attributes("/maps", MAP_ATTRIBUTES);
   // Counts of a few dozen at most; the bound keeps a damaged count from sizing anything.
@@ -267,7 +282,7 @@ CalibrationMaps read_maps(const ChecksumReader& tables) {
   };
   m.count_min = whole("count_min");
   m.count_max = whole("count_max");
-  m.line_error_scale = number.at("line_error_scale");
+  m.misfit_ratio = number.at("misfit_ratio");
   m.naive_threshold_index = whole("naive_threshold_index");
   m.naive_threshold = number.at("naive_threshold");
   m.records = whole("records");
@@ -278,8 +293,22 @@ CalibrationMaps read_maps(const ChecksumReader& tables) {
   if (m.count_max < m.count_min) throw tables.damaged("its maps' count range is empty");
   const std::size_t counts = m.count_max - m.count_min + 1;
   const std::size_t bins = (counts + POPULATION_BIN_COUNTS - 1) / POPULATION_BIN_COUNTS;
-  if (m.confusion.size() != counts || m.median_score_quantile.size() != bins || m.sd_score_quantile.size() != bins)
-    throw tables.damaged("its maps do not match its count range");
+  for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
+    ClassMaps& own = m.classes[c];
+    const std::string& group = CLASS_GROUPS[c];
+    own.confusion = tables.matrix(group + "/confusion");
+    own.median_score_quantile = tables.vector(group + "/median_score_quantile");
+    own.sd_score_quantile = tables.vector(group + "/sd_score_quantile");
+    const auto own_number = tables.attributes(group, CLASS_ATTRIBUTES);
+    own.line_error_scale = own_number.at("line_error_scale");
+    const double records = own_number.at("records");
+    if (!(records >= 0.0 && records <= 1e9) || records != std::floor(records))
+      throw tables.damaged(group + "@records is not a count");
+    own.records = static_cast<std::size_t>(records);
+    own.pooled = own_number.at("pooled") != 0.0;
+    if (own.confusion.size() != counts || own.median_score_quantile.size() != bins || own.sd_score_quantile.size() != bins)
+      throw tables.damaged("its maps (" + group + ") do not match its count range");
+  }
   return m;
 }
 

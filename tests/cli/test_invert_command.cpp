@@ -173,11 +173,11 @@ TEST_F(InvertCommand, CalibrationIsTheSameOnOneAndTwoThreads) {
   // Everything but the estimator's CPU times, bitwise.
   for (const char* name : {"/records/count", "/records/true_count", "/records/stiffness", "/records/log_stiffness_se",
                            "/records/log_evidence", "/records/median", "/records/sd_log", "/records/naive_counts",
-                           "/records/noise_sigma", "/maps/confusion", "/maps/median_score_quantile",
-                           "/maps/sd_score_quantile", "/atoms/onset_values", "/atoms/breakaway_values", "/atoms/tail_phase",
+                           "/records/noise_sigma", "/maps/fits/confusion", "/maps/fits/median_score_quantile",
+                           "/maps/fits/sd_score_quantile", "/maps/misfits/confusion", "/atoms/onset_values", "/atoms/breakaway_values", "/atoms/tail_phase",
                            "/atoms/tail_log_amplitude"}) {
     const std::string path = name;
-    if (path == "/records/naive_counts" || path == "/maps/confusion" || path == "/atoms/onset_values" ||
+    if (path == "/records/naive_counts" || path == "/maps/fits/confusion" || path == "/maps/misfits/confusion" || path == "/atoms/onset_values" ||
         path == "/atoms/breakaway_values")
       EXPECT_EQ(one.matrix(path), two.matrix(path)) << path;
     else
@@ -436,8 +436,13 @@ TEST_F(InvertCommand, ADamagedBankIsRefusedNamingTheTable) {
   }
   {
     const std::string bank = bank_copy(scratch, source);
-    rewrite_attribute(bank, "/maps", "line_error_scale", 0.5);
+    rewrite_attribute(bank, "/maps", "misfit_ratio", 0.5);
     expect_bank_refused(known, bank, {"the attributes of /maps are damaged", remake});
+  }
+  {
+    const std::string bank = bank_copy(scratch, source);
+    rewrite_attribute(bank, "/maps/misfits", "line_error_scale", 0.5);
+    expect_bank_refused(known, bank, {"the attributes of /maps/misfits are damaged", remake});
   }
   {
     const std::string bank = bank_copy(scratch, source);
@@ -456,7 +461,8 @@ TEST_F(InvertCommand, ADamagedBankIsRefusedNamingTheTable) {
   }
 }
 
-//! Format 1 banks carry no checksums and format 2 ones the old atom table: refused with what
+//! Format 1 banks carry no checksums, format 2 ones the old atom table and format 3 ones one set
+//! of maps for both fit classes: refused with what
 //! to do, as are format versions that are no versions (bank_format_version = -1 and
 //! format_version = -1 were accepted).
 TEST_F(InvertCommand, ABankOfAnOldOrInvalidFormatIsRefused) {
@@ -467,7 +473,11 @@ TEST_F(InvertCommand, ABankOfAnOldOrInvalidFormatIsRefused) {
   expect_bank_refused(known, bank, {"calibration bank format 1 carries no checksums", "make the bank again with stengmc calibrate"});
   bank = bank_copy(scratch, source);
   rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{2});
-  expect_bank_refused(known, bank, {"calibration bank format 2 holds the atoms as a table", "reads format 3",
+  expect_bank_refused(known, bank, {"calibration bank format 2 holds the atoms as a table", "reads format 4",
+                                    "make the bank again with stengmc calibrate"});
+  bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{3});
+  expect_bank_refused(known, bank, {"calibration bank format 3 holds one set of maps", "reads format 4",
                                     "make the bank again with stengmc calibrate"});
   bank = bank_copy(scratch, source);
   rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{-1});

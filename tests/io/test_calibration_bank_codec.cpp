@@ -106,10 +106,18 @@ TEST(BankCodec, AStoredBankRoundTripsBitwise) {
   bank.atoms = shapes();
   bank.maps.count_min = 1;
   bank.maps.count_max = 2;
-  bank.maps.confusion = {{0.75, 0.25}, {-0.0, 1.0}};
-  bank.maps.median_score_quantile = {1.5};
-  bank.maps.sd_score_quantile = {2.5};
-  bank.maps.line_error_scale = 1.25;
+  bank.maps.misfit_ratio = 1.375;
+  bank.maps.classes[0].confusion = {{0.75, 0.25}, {-0.0, 1.0}};
+  bank.maps.classes[0].median_score_quantile = {1.5};
+  bank.maps.classes[0].sd_score_quantile = {2.5};
+  bank.maps.classes[0].line_error_scale = 1.25;
+  bank.maps.classes[0].records = 41;
+  bank.maps.classes[1].confusion = {{0.5, 0.5}, {0.125, 0.875}};
+  bank.maps.classes[1].median_score_quantile = {3.5};
+  bank.maps.classes[1].sd_score_quantile = {4.5};
+  bank.maps.classes[1].line_error_scale = 2.25;
+  bank.maps.classes[1].records = 9;
+  bank.maps.classes[1].pooled = true;
   bank.maps.naive_threshold_index = 3;
   bank.maps.naive_threshold = 4.0;
   bank.maps.records = 50;
@@ -121,9 +129,18 @@ TEST(BankCodec, AStoredBankRoundTripsBitwise) {
   EXPECT_EQ(back.identity.hash, bank.identity.hash);
   EXPECT_EQ(back.created_utc, bank.created_utc);
   expect_same(back.atoms, bank.atoms);
-  EXPECT_EQ(bits(back.maps.confusion), bits(bank.maps.confusion));
   EXPECT_EQ(back.maps.records, bank.maps.records);
-  EXPECT_EQ(bits(back.maps.line_error_scale), bits(bank.maps.line_error_scale));
+  EXPECT_EQ(bits(back.maps.misfit_ratio), bits(bank.maps.misfit_ratio));
+  for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
+    SCOPED_TRACE(c);
+    const ClassMaps &was = bank.maps.classes[c], &is = back.maps.classes[c];
+    EXPECT_EQ(bits(is.confusion), bits(was.confusion));
+    EXPECT_EQ(bits(is.median_score_quantile), bits(was.median_score_quantile));
+    EXPECT_EQ(bits(is.sd_score_quantile), bits(was.sd_score_quantile));
+    EXPECT_EQ(bits(is.line_error_scale), bits(was.line_error_scale));
+    EXPECT_EQ(is.records, was.records);
+    EXPECT_EQ(is.pooled, was.pooled);
+  }
 }
 
 TEST(BankCodec, ABankWithRecordsRoundTripsBitwise) {
