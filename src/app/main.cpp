@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "core/build_info.hpp"
+#include "core/creation_time.hpp"
 #include "core/error.hpp"
 #include "core/huge_page_heap.hpp"
 #include "ensemble/process_world.hpp"
@@ -102,6 +103,9 @@ int run_command_line(int argc, char** argv) {
     return 0;
   }
   try {
+    // A SOURCE_DATE_EPOCH that cannot be read is refused before any work, not by the file
+    // written at the end of a long run.
+    static_cast<void>(stengmc::creation_time_utc());
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version are "errors" with code 0; every real usage error is bad input.
