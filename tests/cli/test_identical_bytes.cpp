@@ -125,6 +125,11 @@ TEST(IdenticalBytes, AMalformedSourceDateEpochIsRefusedNamingItBeforeAnyWork) {
     EXPECT_FALSE(std::filesystem::exists(out)) << value;
     EXPECT_FALSE(std::filesystem::exists(out + ".journal")) << value;
   }
+  // Help and the version write no file: they answer whatever the variable holds.
+  for (const char* asked : {"--help", "--version", "run --help"}) {
+    const auto answered = run_cli(asked, scratch, "SOURCE_DATE_EPOCH=yesterday");
+    EXPECT_EQ(answered.exit_code, 0) << asked << ": " << answered.output;
+  }
 }
 
 }  // namespace
