@@ -3,13 +3,16 @@
 //   0 success, 1 unexpected failure, 2 bad input (study, file or command line),
 //   3 the model left its domain of validity (x reaching l under policy `error`, integrator failure).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "core/build_info.hpp"
+#include "core/creation_time.hpp"
 #include "core/error.hpp"
 #include "core/huge_page_heap.hpp"
 #include "ensemble/process_world.hpp"
@@ -102,6 +105,13 @@ int run_command_line(int argc, char** argv) {
     return 0;
   }
   try {
+    // A SOURCE_DATE_EPOCH that cannot be read is refused before any work, not by the file
+    // written at the end of a long run; asking for help or the version writes no file.
+    const std::vector<std::string> arguments(argv + 1, argv + argc);
+    const bool writes_nothing = std::any_of(arguments.begin(), arguments.end(), [](const std::string& a) {
+      return a == "-h" || a == "--help" || a == "--version";
+    });
+    if (!writes_nothing) static_cast<void>(stengmc::creation_time_utc());
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version are "errors" with code 0; every real usage error is bad input.

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/hdf5_untimed.hpp"
 
 namespace stengmc {
 
@@ -195,7 +196,8 @@ class ScaleAttacher {
     const hsize_t dims[1] = {length};
     const Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose);
     // netCDF-C's pure dimensions are 32-bit floats never written (no storage allocated).
-    const hid_t scale = H5Dcreate2(file_, made.c_str(), H5T_IEEE_F32BE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t scale = H5Dcreate2(file_, made.c_str(), H5T_IEEE_F32BE, space.get(), H5P_DEFAULT,
+                                   untimed_dataset().getId(), H5P_DEFAULT);
     if (scale < 0) fail("cannot create dimension " + made);
     open_.emplace(made, std::make_unique<Handle>(scale, H5Dclose));
     written_[made].extent = {length};

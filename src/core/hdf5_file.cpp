@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/hdf5_untimed.hpp"
 #include "core/input_file.hpp"
 #include "core/posix_file.hpp"
 
@@ -92,7 +93,7 @@ Hdf5Writer::Hdf5Writer(std::string path, Describer describe) : path_(std::move(p
     constexpr std::size_t GROWTH_BYTES = 1 << 20;
     if (H5Pset_fapl_core(access.getId(), GROWTH_BYTES, false) < 0)
       throw H5::PropListIException("H5Pset_fapl_core", "cannot select the core driver");
-    file_ = std::make_unique<H5::H5File>(temporary_->path(), H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access);
+    file_ = std::make_unique<H5::H5File>(temporary_->path(), H5F_ACC_TRUNC, untimed_file(), access);
   } catch (const H5::Exception& e) {
     throw Error(path_ + ": cannot create the output file in memory: " + e.getDetailMsg());
   }
@@ -116,7 +117,12 @@ H5::Group& Hdf5Writer::group_for(const std::string& dataset_path) {
   if (path == "/") return groups_.emplace(path, file_->openGroup("/")).first->second;
   H5::Group& parent = group_for(path);
   const std::string name = path.substr(path.rfind('/') + 1);
-  H5::Group group = parent.nameExists(name) ? parent.openGroup(name) : parent.createGroup(name);
+  if (!parent.nameExists(name)) {
+    // Made with the C call, which takes a group creation list, and opened as any group.
+    const hid_t made = H5Gcreate2(parent.getId(), name.c_str(), H5P_DEFAULT, untimed_group(), H5P_DEFAULT);
+    if (made < 0 || H5Gclose(made) < 0) throw H5::GroupIException("H5Gcreate2", "cannot create group " + path);
+  }
+  H5::Group group = parent.openGroup(name);
   return groups_.emplace(path, std::move(group)).first->second;
 }
 
@@ -145,8 +151,8 @@ namespace {
 //! set-up per dataset and its deflate). Empty ones must (a chunk cannot be empty).
 H5::DSetCreatPropList column_layout(hsize_t size) {
   constexpr hsize_t SMALLEST_COMPRESSED = 8192;  // values: 64 KiB of doubles
-  if (size < SMALLEST_COMPRESSED) return H5::DSetCreatPropList::DEFAULT;  // shared, not a new list per dataset
-  H5::DSetCreatPropList layout;
+  if (size < SMALLEST_COMPRESSED) return untimed_dataset();  // shared, not a new list per dataset
+  H5::DSetCreatPropList layout = untimed(H5::DSetCreatPropList());
   constexpr hsize_t CHUNK = 16384;
   const hsize_t chunk[1] = {std::min(size, CHUNK)};
   layout.setChunk(1, chunk);
@@ -187,7 +193,7 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
   }
   check_finite(path, flat);
   guarded("cannot write " + path, [&] {
-    H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_DOUBLE, {rows.size(), columns});
+    H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_DOUBLE, {rows.size(), columns}, untimed_dataset());
     if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
     annotate(dataset, units, long_name);
   });
@@ -217,7 +223,7 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
     std::vector<const char*> pointers;
     pointers.reserve(values.size());
     for (const auto& v : values) pointers.push_back(v.c_str());
-    H5::DataSet& dataset = create_dataset(path, string_type(), {values.size()});
+    H5::DataSet& dataset = create_dataset(path, string_type(), {values.size()}, untimed_dataset());
     if (!values.empty()) dataset.write(pointers.data(), string_type(), H5::DataSpace::ALL, H5::DataSpace::ALL,
                                        conversion_buffer(values.size(), sizeof(hvl_t)));
     annotate(dataset, units, long_name);

@@ -74,9 +74,10 @@ class Hdf5Writer {
   //! The group that holds `dataset_path`, made (with its parents) if absent; kept open.
   H5::Group& group_for(const std::string& dataset_path);
   //! Creates the dataset at `path` in its group and keeps it open until commit(), so its
-  //! attributes, dimension scales and references need no walk of the path.
+  //! attributes, dimension scales and references need no walk of the path. `layout` is an
+  //! untimed one (core/hdf5_untimed.hpp), so the file holds no time of its making.
   H5::DataSet& create_dataset(const std::string& path, const H5::DataType& type, const std::vector<hsize_t>& extent,
-                              const H5::DSetCreatPropList& layout = H5::DSetCreatPropList::DEFAULT);
+                              const H5::DSetCreatPropList& layout);
   //! The group or dataset at `path` ("/": the root), as held open or opened.
   H5::H5Object& object_at(const std::string& path);
   //! The dataset's units and, when given, its long_name (written while it is open).

@@ -1,10 +1,9 @@
 #include "io/run_file.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 
 #include "core/build_info.hpp"
+#include "core/creation_time.hpp"
 #include "core/column.hpp"
 #include "core/setting.hpp"
 #include "circuit/circuit_settings.hpp"
@@ -17,14 +16,6 @@
 namespace stengmc {
 
 namespace {
-
-std::string utc_now() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
 
 void write_model(Hdf5Writer& file, const Study& study) {
   file.group("/model");
@@ -60,7 +51,7 @@ void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
   file.attribute("/", "format_version", RUN_FILE_FORMAT_VERSION);
   file.attribute("/", "program_version", program_version());
   file.attribute("/", "git_revision", git_revision());
-  file.attribute("/", "created_utc", utc_now());
+  file.attribute("/", "created_utc", creation_time_utc());
   file.attribute("/", "seed", static_cast<std::int64_t>(provenance.seed));
   file.attribute("/", "input_file", provenance.input_file);
   file.attribute("/", "input_text", provenance.input_text);

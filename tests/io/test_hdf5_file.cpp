@@ -90,6 +90,42 @@ TEST(Hdf5Writer, CommittedFilesAreWholeAndMarkedClosed) {
   }
 }
 
+// No object records when it was made (core/hdf5_untimed.hpp): HDF5's default stamps each
+// group and dataset, so equal results differed in their bytes and their sha256. Every kind
+// of object the writer makes: the root, nested groups, contiguous and chunked columns,
+// matrices, integers, strings.
+TEST(Hdf5Writer, NoObjectCarriesATimestamp) {
+  testing::ScratchDir scratch("hdf5-untimed");
+  const std::string out = scratch.file("out.h5");
+  {
+    Hdf5Writer file(out);
+    file.write("/a/b/small", std::vector<double>{1.0, 2.0}, "m");
+    file.write("/a/large", std::vector<double>(20'000, 0.5), "m");  // chunked and compressed
+    file.write("/matrix", std::vector<std::vector<double>>{{1.0, 2.0}, {3.0, 4.0}}, "V");
+    file.write("/ids", std::vector<std::int64_t>{3, 4}, "1");
+    file.write("/names", std::vector<std::string>{"x", "y"}, "1");
+    file.group("/empty");
+    file.attribute("/", "created_utc", "2023-11-14T22:13:20Z");
+    file.commit();
+  }
+  const H5::H5File file(out, H5F_ACC_RDONLY);
+  std::vector<std::string> visited;
+  std::vector<std::string> timed;
+  struct Seen {
+    std::vector<std::string>& visited;
+    std::vector<std::string>& timed;
+  } seen{visited, timed};
+  const auto look = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+    auto& s = *static_cast<Seen*>(data);
+    s.visited.emplace_back(name);
+    if (info->atime != 0 || info->mtime != 0 || info->ctime != 0 || info->btime != 0) s.timed.emplace_back(name);
+    return 0;
+  };
+  ASSERT_GE(H5Ovisit2(file.getId(), H5_INDEX_NAME, H5_ITER_INC, look, &seen, H5O_INFO_TIME), 0);
+  EXPECT_EQ(visited.size(), 9u) << "the root, /a, /a/b, /empty and five datasets";
+  EXPECT_TRUE(timed.empty()) << timed.size() << " objects carry a timestamp, the first " << timed.front();
+}
+
 // The writer gives HDF5 a string-conversion buffer sized to the data, at most 1 MiB
 // (hdf5_file.cpp); a column of more strings than that holds is converted in pieces. Both
 // must come back exactly as written, read through HDF5's own API.
