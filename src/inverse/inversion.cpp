@@ -88,6 +88,17 @@ std::string residual_pointer(const RecordEstimate& e) {
          " x the noise's share there): it points to " + worst->what + ".";
 }
 
+//! What the intervals of a misfitting record rest on.
+std::string misfit_interval_note(const CalibrationMaps* maps) {
+  if (!maps) return "";
+  const ClassMaps& misfits = maps->of(FitClass::misfits);
+  if (!misfits.pooled) return "; the intervals above are learnt from the bank's records that fit as badly";
+  return "; the bank holds too few such records (" + std::to_string(misfits.records) +
+         ") to learn their intervals apart, so the intervals above are those of all its records and likely too narrow: "
+         "calibrate with a prior that includes what this device departs by ([inverse] load_cv, onset_s, "
+         "parameter_tolerance, noise, offset)";
+}
+
 }  // namespace
 
 Inverter::Inverter(const InverseSetup& setup, const AtomLibrary& atoms, const CalibrationMaps* maps)
@@ -179,8 +190,7 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
                            number(boundary, "%.3g") +
                            (maps_ ? " (what 85 % of the bank's records counted right stay below)" : " (no bank: 10 %)") +
                            ": the model does not fit to the noise, and counts of such records are wrong far more often" +
-                           (maps_ && !maps_->of(FitClass::misfits).pooled ? "; the intervals above are learnt from the bank's records that fit as badly"
-                                                                          : ""));
+                           misfit_interval_note(maps_));
   }
   // A record whose amplitude no count of this device's atoms can give: other units (mV, uV,
   // an ADC's counts) or other known parameters. n atoms give at most n times one atom's rms

@@ -287,7 +287,9 @@ def main():
         expect_dims(b, "/records", "naive_counts", ("realisation", "threshold"))
         expect_dims(b, "/atoms", "onset_values", ("onset_node", "theta_sample"))
         expect_dims(b, "/atoms", "tail_phase", ("node",))
-        expect_dims(b, "/maps", "confusion", ("estimated_count", "count"))
+        for fit_class in ("fits", "misfits"):
+            expect_dims(b, "/maps/" + fit_class, "confusion", ("estimated_count", "count"))
+            expect_dims(b, "/maps/" + fit_class, "median_score_quantile", ("count_bin",))
 
         i = out("inverse.h5")
         expect_dims(i, "/inverse/records", "noise_sigma_v", ("record",))
