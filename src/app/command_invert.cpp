@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/inputs.hpp"
 #include "app/limit_options.hpp"
+#include "app/record_options.hpp"
 #include "app/validators.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -36,6 +37,7 @@ struct InvertOptions {
   FigureOptions figure;
   int threads = 0;
   LimitOptions limits;
+  RecordOptions record;
 };
 
 std::string default_bank(const std::string& known) {
@@ -99,10 +101,10 @@ void run(const InvertOptions& options) {
   // reading it costs before it is read.
   std::vector<NamedRecord> records;
   for (const std::string& path : options.signals) {
-    if (std::filesystem::path(path).extension() == ".csv" || std::filesystem::path(path).extension() == ".CSV")
+    if (is_record_text(path, options.record.read()))
       check_work(estimate_record_reading(static_cast<double>(check_input_file(path, "the record CSV file"))),
                  options.limits.limits(), path + ": reading it");
-    std::vector<NamedRecord> more = read_inverse_records(path);
+    std::vector<NamedRecord> more = read_inverse_records(path, options.record.read());
     for (NamedRecord& r : more) records.push_back(std::move(r));
   }
   std::optional<RecordGrid> grid;
@@ -214,7 +216,7 @@ void add_invert_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "invert", "Inverse estimation: how many asperities slide, and their stiffnesses, from measured voltages of a known device");
   command->add_option("signals", options->signals,
-                      "Records: CSV files `t,V`, stengmc run files, or ensemble files (every kept trace)")
+                      "Records: CSV files `t,V`, oscilloscope exports (--format), stengmc run files, or ensemble files (every kept trace)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-k,--known", options->known, "The known device's study file (with its [inverse] prior)")
@@ -231,6 +233,7 @@ void add_invert_command(CLI::App& app) {
   add_figure_options(command, figures, options->figure);
   command->add_option("-j,--threads", options->threads, "Threads (default: OMP_NUM_THREADS when set, else every core)")->check(CLI::Range(1, MAX_THREADS));
   add_limit_options(command, options->limits);
+  add_record_options(command, options->record);
   command->callback([options] { run(*options); });
 }
 

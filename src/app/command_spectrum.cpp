@@ -4,11 +4,13 @@
 
 #include "app/commands.hpp"
 #include "app/limit_options.hpp"
+#include "app/record_options.hpp"
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
 #include "io/output_path.hpp"
 #include "io/run_file.hpp"
+#include "io/instrument_csv.hpp"
 #include "io/signal_input.hpp"
 #include "io/spectrum_file.hpp"
 #include "core/toml_reader.hpp"
@@ -28,6 +30,7 @@ struct SpectrumOptions {
   bool figures = false;
   FigureOptions figure;
   LimitOptions limits;
+  RecordOptions record;
 };
 
 //! The [spectrum] table of a study file, or the defaults.
@@ -46,13 +49,14 @@ SpectrumSettings settings_from(const std::string& file) {
 void run(const SpectrumOptions& options) {
   check_output_path(options.out, {{options.input, "the signal file"}, {options.settings_file, "the settings file"}});
   const SpectrumSettings settings = settings_from(options.settings_file);
-  const bool csv = std::filesystem::path(options.input).extension() == ".csv";
-  // A CSV of S bytes holds at most S/4 (t, V) rows: bound what reading it may cost first.
+  const bool csv = is_record_text(options.input, options.record.read());
+  // A text record of S bytes holds at most S/4 samples (`0,0` and a line end; a Rigol row of
+  // index and voltage is no shorter): bound what reading it may cost first.
   if (csv)
     check_work(estimate_spectrum(static_cast<double>(check_input_file(options.input, "the signal CSV file")) / 4.0, 0.0,
                                  settings),
                options.limits.limits(), options.input + ": reading it");
-  const SignalInput signal = csv ? read_signal_csv(options.input) : read_signal_hdf5(options.input);
+  const SignalInput signal = csv ? read_record_text(options.input, options.record.read()) : read_signal_hdf5(options.input);
   check_work(estimate_spectrum(static_cast<double>(signal.times_s.size()), static_cast<double>(signal.currents_a.size()),
                                settings),
              options.limits.limits(), options.input + ": the analysis");
@@ -98,7 +102,7 @@ void add_spectrum_command(CLI::App& app) {
   auto options = std::make_shared<SpectrumOptions>();
   CLI::App* command = app.add_subcommand(
       "spectrum", "Spectra, peaks, ESPRIT lines, identifiability and spectrogram of an existing output file or a CSV `t,V`");
-  command->add_option("input", options->input, "A stengmc output file (uses /time, /circuit/voltage, ...) or IN.csv")
+  command->add_option("input", options->input, "A stengmc output file (uses /time, /circuit/voltage, ...), IN.csv `t,V` or an oscilloscope export (--format)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("-o,--out", options->out, "Output HDF5 file (/spectrum, /spectrogram)")
@@ -109,6 +113,7 @@ void add_spectrum_command(CLI::App& app) {
   CLI::Option* figures = command->add_flag("-f,--figures", options->figures, "Also render figures");
   add_figure_options(command, figures, options->figure);
   add_limit_options(command, options->limits);
+  add_record_options(command, options->record);
   command->callback([options] { run(*options); });
 }
 

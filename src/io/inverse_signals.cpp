@@ -6,6 +6,7 @@
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
 #include "io/guarded_read.hpp"
+#include "io/instrument_csv.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
 
@@ -55,11 +56,10 @@ std::vector<NamedRecord> read_hdf5_records(const std::string& path) {
 
 }  // namespace
 
-std::vector<NamedRecord> read_inverse_records(const std::string& path) {
+std::vector<NamedRecord> read_inverse_records(const std::string& path, const RecordReadOptions& text) {
   if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
-  const std::string extension = std::filesystem::path(path).extension().string();
-  if (extension == ".csv" || extension == ".CSV") {
-    SignalInput s = read_signal_csv(path);
+  if (is_record_text(path, text)) {
+    SignalInput s = read_record_text(path, text);
     return {{path, std::move(s.times_s), std::move(s.voltage_v)}};
   }
   // As every HDF5 input: a regular file, read first by a child process that a damaged file

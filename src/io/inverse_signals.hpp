@@ -1,10 +1,13 @@
 #pragma once
-//! The records `stengmc invert` reads (docs/inverse.md): a CSV `t,V`; a stengmc
+//! The records `stengmc invert` reads (docs/inverse.md): a CSV `t,V` or an oscilloscope's
+//! text export (io/instrument_csv.hpp); a stengmc
 //! run (or circuit) file, its /circuit/measured_voltage when it has one, else
 //! /circuit/voltage; or a stengmc ensemble file, every kept trace (measured_voltage when
 //! the study had [noise]) as one record.
 #include <string>
 #include <vector>
+
+#include "io/instrument_csv.hpp"
 
 namespace stengmc {
 
@@ -14,7 +17,8 @@ struct NamedRecord {
   std::vector<double> voltage_v;
 };
 
+//! @param text how to read a text record (`--format`, `--column`); HDF5 files ignore it.
 //! @throws InputError for an unreadable file, one without a voltage, or an ensemble without traces.
-std::vector<NamedRecord> read_inverse_records(const std::string& path);
+std::vector<NamedRecord> read_inverse_records(const std::string& path, const RecordReadOptions& text = {});
 
 }  // namespace stengmc

@@ -35,6 +35,8 @@ COMMANDS = {
     "./build/src/stengmc circuit my_displacements.csv -R 1e6 --interpolation linear --out my_circuit.h5": USER_DATA,
     "./build/src/stengmc spectrum results/fig6_vb10_l50.h5 --settings studies/paper/fig6_vb10_l50.toml --out spectra.h5": RUN,
     "./build/src/stengmc spectrum measured_voltage.csv --out spectra.h5 --figures": USER_DATA,
+    "./build/src/stengmc spectrum TEK0001.CSV --out spectra.h5": USER_DATA,
+    "./build/src/stengmc invert scope.csv --format keysight --column 2 --known device.toml --out inverse.h5": USER_DATA,
     "./build/src/stengmc plot results/fig6_vb10_l50.h5": RUN,
     "./build/src/stengmc surface surfaces/pet_on_steel_gw.toml --realisations 200 --seed 1 --figures": RUN,
     "./build/src/stengmc run studies/surfaces/gw_vb10.toml --realisation 3 --figures": RUN,
