@@ -14,9 +14,12 @@ namespace stengmc {
 
 //! What a dataset holds: its CF attributes and the name of each of its axes.
 struct DatasetDescription {
-  std::string units;                    //!< CF/UDUNITS unit ("s", "V", "N/m"; "1": dimensionless)
+  std::string units;                    //!< CF/UDUNITS-2 unit ("s", "V", "N/m"; "1": dimensionless); "": none written
   std::string long_name;                //!< what it is, in words
   std::vector<std::string> dimensions;  //!< one name per axis, outermost first ("a|b": see below)
+  //! CF `comment` ("": none): what the unit cannot say, or, for a dataset with no single
+  //! unit (units ""), the unit of each of its parts.
+  std::string comment = {};
 };
 
 //! A dataset of the file and its description.

@@ -137,7 +137,7 @@ H5::DataSet& Hdf5Writer::create_dataset(const std::string& path, const H5::DataT
 
 void Hdf5Writer::annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name) {
   const H5::DataSpace scalar(H5S_SCALAR);
-  dataset.createAttribute("units", string_type(), scalar).write(string_type(), std::string(units));
+  if (!units.empty()) dataset.createAttribute("units", string_type(), scalar).write(string_type(), std::string(units));
   if (long_name)
     dataset.createAttribute("long_name", string_type(), scalar).write(string_type(), std::string(*long_name));
 }
@@ -241,26 +241,35 @@ DatasetDescription Hdf5Writer::described(const std::string& path, std::optional<
 void Hdf5Writer::write(const std::string& path, std::span<const double> values) {
   const DatasetDescription d = described(path);
   write(path, values, d.units, d.long_name);
+  comment(path, d);
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows) {
   const DatasetDescription d = described(path);
   write(path, rows, d.units, d.long_name);
+  comment(path, d);
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values) {
   const DatasetDescription d = described(path);
   write(path, values, d.units, d.long_name);
+  comment(path, d);
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values) {
   const DatasetDescription d = described(path);
   write(path, values, d.units, d.long_name);
+  comment(path, d);
 }
 
 void Hdf5Writer::write_with_units(const std::string& path, std::span<const double> values, std::string_view units) {
   const DatasetDescription d = described(path, units);
   write(path, values, d.units, d.long_name);
+  comment(path, d);
+}
+
+void Hdf5Writer::comment(const std::string& path, const DatasetDescription& description) {
+  if (!description.comment.empty()) attribute(path, "comment", description.comment);
 }
 
 void Hdf5Writer::group(const std::string& path) {

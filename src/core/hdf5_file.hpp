@@ -80,7 +80,7 @@ class Hdf5Writer {
                               const H5::DSetCreatPropList& layout);
   //! The group or dataset at `path` ("/": the root), as held open or opened.
   H5::H5Object& object_at(const std::string& path);
-  //! The dataset's units and, when given, its long_name (written while it is open).
+  //! The dataset's units (none for "") and, when given, its long_name (written while it is open).
   void annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name);
   //! The raw writes, with the long_name of a described dataset.
   void write(const std::string& path, std::span<const double> values, std::string_view units, std::optional<std::string_view> long_name);
@@ -93,6 +93,8 @@ class Hdf5Writer {
   //! The Describer's description of `path`, remembered for commit(); its units unless
   //! `units` is given.
   DatasetDescription described(const std::string& path, std::optional<std::string_view> units = std::nullopt);
+  //! The described dataset's CF `comment`, when its description has one.
+  void comment(const std::string& path, const DatasetDescription& description);
   //! Runs HDF5 calls on the file; their failures become Error naming the output.
   template <class Call>
   void guarded(const std::string& what, Call call);

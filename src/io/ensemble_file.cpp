@@ -1,6 +1,8 @@
 #include "io/ensemble_file.hpp"
 
 #include <cstdint>
+#include <optional>
+#include <type_traits>
 #include <variant>
 
 #include "core/hdf5_file.hpp"
@@ -57,9 +59,18 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
     }
 }
 
-void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
+//! The target's half-width is in the target statistic's unit, which only the settings know.
+void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid, std::optional<Scalar> target) {
   for (const SummaryColumn& c : tabulate_summary(grid))
-    std::visit([&](const auto& values) { f.write("/summary/" + c.group + "/" + c.name, values); }, c.values);
+    std::visit(
+        [&](const auto& values) {
+          const std::string path = "/summary/" + c.group + "/" + c.name;
+          if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>)
+            if (target && path == "/summary/target/half_width")
+              return f.write_with_units(path, values, scalar_info(*target).unit);
+          f.write(path, values);
+        },
+        c.values);
 }
 
 }  // namespace
@@ -96,7 +107,7 @@ void write_ensemble_file(const std::string& path, const StudyFile& base, const s
   write_realisations(file, grid);
   write_draws(file, base, grid);
   write_traces(file, grid);
-  write_summary(file, grid);
+  write_summary(file, grid, e.target);
   file.commit();
 }
 

@@ -19,14 +19,26 @@ namespace {
 //! One row of the vocabulary. `path` is a glob (fnmatch, `*` also matching `/`): the
 //! first row that matches a dataset's path describes it. `dimensions` are the axis names,
 //! space-separated, outermost first; a dataset named as its only dimension is that
-//! dimension's coordinate. Units: SI as UDUNITS spells them, "1" for counts, ratios,
-//! flags, indices and text; "dB" for decibels.
+//! dimension's coordinate. Units: SI as UDUNITS-2 parses them (CF 1.10, 3.1), "1" for
+//! counts, ratios, flags, indices and text, DECIBEL for decibels; "" for a dataset with no
+//! single unit, whose `comment` then gives the unit of each part (no units attribute is
+//! written: any one would be false for some of its values).
 struct Term {
   std::string_view path;
   std::string_view units;
   std::string_view long_name;
   std::string_view dimensions;
+  std::string_view comment = {};
 };
+
+//! A level in decibels of a power ratio, 10 log10(P/P0), as UDUNITS-2 spells it: it
+//! defines no "dB", and "0.1 lg(re 1)" converts 30 to a ratio of 1000.
+constexpr std::string_view DECIBEL = "0.1 lg(re 1)";
+constexpr std::string_view DECIBEL_COMMENT = "decibels of a power ratio, 10 log10(P_signal/P_noise)";
+//! The law parameters' units depend on the law's family (and the bank's on its prior's).
+constexpr std::string_view FIRST_UNITS = "median [N/m] for a lognormal law, shape [1] for gamma and weibull";
+constexpr std::string_view SECOND_UNITS = "sigma_log [1] for a lognormal law, scale [N/m] for gamma and weibull";
+constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its parameter (the study key's unit)";
 
 // The dimensions, one name per axis kind across the files:
 //   time               sample instants (/time; a trace's own time)
@@ -155,24 +167,25 @@ constexpr std::array TERMS{
     Term{"/load_separation/total_load_n", "N", "total normal load at the separation", "separation_m"},
     // ensemble file (its scalars and asperity columns: describe_ensemble below)
     Term{"/grid/parameter", "1", "swept parameter", "parameter"},
-    Term{"/grid/values", "as each parameter", "value of each swept parameter", "grid_point parameter"},
+    Term{"/grid/values", "", "value of each swept parameter", "grid_point parameter", PARAMETER_UNITS},
     Term{"/realisations/grid_point", "1", "grid point of the realisation", "realisation"},
     Term{"/realisations/valid", "1", "1 when the realisation is valid", "realisation"},
     Term{"/realisations/failure", "1", "why the realisation is invalid", "realisation"},
     Term{"/draws/parameter", "1", "drawn parameter", "parameter"},
-    Term{"/draws/values", "as each parameter", "value drawn for each parameter", "realisation parameter"},
+    Term{"/draws/values", "", "value drawn for each parameter", "realisation parameter", PARAMETER_UNITS},
     Term{"/traces/*/time", "s", "time", "time"},
     Term{"/traces/*/voltage", "V", "load voltage", "time"},
     Term{"/traces/*/charge", "C", "charge delivered to the load resistor", "time"},
     Term{"/traces/*/measured_voltage", "V", "load voltage with measurement noise", "time"},
-    Term{"/summary/target/half_width", "as the target statistic", "half-width reached by the target statistic",
-         "grid_point"},
+    // Its units are the target statistic's where there is one (io/ensemble_file.cpp).
+    Term{"/summary/target/half_width", "", "half-width reached by the target statistic", "grid_point",
+         "in the unit of the target statistic (root attribute target_statistic); 0 without one"},
     Term{"/summary/target/met", "1", "1 when the target half-width was met", "grid_point"},
     // inverse result file
     Term{"/inverse/records/name", "1", "record name", "record"},
     Term{"/inverse/records/noise_sigma_v", "V", "noise standard deviation", "record"},
     Term{"/inverse/records/residual_sigma_v", "V", "residual standard deviation of the fit", "record"},
-    Term{"/inverse/records/signal_to_noise_db", "dB", "signal-to-noise ratio", "record"},
+    Term{"/inverse/records/signal_to_noise_db", DECIBEL, "signal-to-noise ratio", "record", DECIBEL_COMMENT},
     Term{"/inverse/records/band_power_ratio", "1", "fraction of the power in the prior's band", "record"},
     Term{"/inverse/records/lines_outside_prior", "1", "lines outside the prior's band", "record"},
     Term{"/inverse/records/seconds", "s", "computing time", "record"},
@@ -204,12 +217,12 @@ constexpr std::array TERMS{
     Term{"/inverse/*/laws/record", "1", "index of the law's record", "law"},
     Term{"/inverse/*/laws/family", "1", "stiffness law family", "law"},
     Term{"/inverse/*/laws/fitted", "1", "1 when the law was fitted", "law"},
-    Term{"/inverse/*/laws/first", "median [N/m] (lognormal) or shape [-]", "first law parameter", "law"},
-    Term{"/inverse/*/laws/first_low", "as first", "lower end of the first parameter's interval", "law"},
-    Term{"/inverse/*/laws/first_high", "as first", "upper end of the first parameter's interval", "law"},
-    Term{"/inverse/*/laws/second", "sigma_log [-] (lognormal) or scale [N/m]", "second law parameter", "law"},
-    Term{"/inverse/*/laws/second_low", "as second", "lower end of the second parameter's interval", "law"},
-    Term{"/inverse/*/laws/second_high", "as second", "upper end of the second parameter's interval", "law"},
+    Term{"/inverse/*/laws/first", "", "first law parameter", "law", FIRST_UNITS},
+    Term{"/inverse/*/laws/first_low", "", "lower end of the first parameter's interval", "law", FIRST_UNITS},
+    Term{"/inverse/*/laws/first_high", "", "upper end of the first parameter's interval", "law", FIRST_UNITS},
+    Term{"/inverse/*/laws/second", "", "second law parameter", "law", SECOND_UNITS},
+    Term{"/inverse/*/laws/second_low", "", "lower end of the second parameter's interval", "law", SECOND_UNITS},
+    Term{"/inverse/*/laws/second_high", "", "upper end of the second parameter's interval", "law", SECOND_UNITS},
     Term{"/inverse/*/laws/aic", "1", "Akaike information criterion", "law"},
     Term{"/inverse/*/laws/delta_aic", "1", "AIC minus the record's best", "law"},
     Term{"/inverse/*/laws/median", "N/m", "law median stiffness", "law"},
@@ -240,10 +253,9 @@ constexpr std::array TERMS{
     Term{"/records/valid", "1", "1 when the record is valid", "realisation"},
     Term{"/records/true_count", "1", "true asperity count", "realisation"},
     Term{"/records/count", "1", "estimated asperity count", "realisation"},
-    Term{"/records/snr_db", "dB", "signal-to-noise ratio drawn", "realisation"},
-    Term{"/records/law_first", "median [N/m] (lognormal) or shape [-]", "first parameter of the drawn law", "realisation"},
-    Term{"/records/law_second", "sigma_log [-] (lognormal) or scale [N/m]", "second parameter of the drawn law",
-         "realisation"},
+    Term{"/records/snr_db", DECIBEL, "signal-to-noise ratio drawn", "realisation", DECIBEL_COMMENT},
+    Term{"/records/law_first", "", "first parameter of the drawn law", "realisation", FIRST_UNITS},
+    Term{"/records/law_second", "", "second parameter of the drawn law", "realisation", SECOND_UNITS},
     Term{"/records/true_median", "N/m", "true median stiffness", "realisation"},
     Term{"/records/median", "N/m", "estimated median stiffness", "realisation"},
     Term{"/records/true_sd_log", "1", "true standard deviation of log stiffness", "realisation"},
@@ -251,7 +263,7 @@ constexpr std::array TERMS{
     Term{"/records/noise_sigma", "V", "noise standard deviation", "realisation"},
     Term{"/records/residual_sigma", "V", "residual standard deviation of the fit", "realisation"},
     Term{"/records/band_power_ratio", "1", "fraction of the power in the prior's band", "realisation"},
-    Term{"/records/snr_estimate_db", "dB", "estimated signal-to-noise ratio", "realisation"},
+    Term{"/records/snr_estimate_db", DECIBEL, "estimated signal-to-noise ratio", "realisation", DECIBEL_COMMENT},
     Term{"/records/seconds", "s", "computing time", "realisation"},
     Term{"/records/naive_count", "1", "naive count at the chosen threshold", "realisation"},
     Term{"/records/naive_counts", "1", "naive count at each threshold", "realisation threshold"},
@@ -328,7 +340,7 @@ std::optional<DatasetDescription> describe_ensemble(const std::string& path) {
 DatasetDescription describe_output(const std::string& path) {
   for (const Term& term : TERMS)
     if (fnmatch(std::string(term.path).c_str(), path.c_str(), 0) == 0)
-      return {std::string(term.units), std::string(term.long_name), split(term.dimensions)};
+      return {std::string(term.units), std::string(term.long_name), split(term.dimensions), std::string(term.comment)};
   if (auto described = describe_ensemble(path)) return *described;
   throw Error("no description of the output dataset " + path + " (add it to io/output_vocabulary.cpp)");
 }

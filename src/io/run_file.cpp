@@ -47,6 +47,9 @@ void write_events(Hdf5Writer& file, const RunResult& result) {
 }  // namespace
 
 void write_provenance(Hdf5Writer& file, const Provenance& provenance) {
+  // Every output is netCDF-4 and follows CF 1.10 where CF has a say: units UDUNITS-2
+  // parses, long_name on every variable (io/output_vocabulary.cpp).
+  file.attribute("/", "Conventions", "CF-1.10");
   file.attribute("/", "file_type", provenance.file_type);
   file.attribute("/", "format_version", RUN_FILE_FORMAT_VERSION);
   file.attribute("/", "program_version", program_version());

@@ -12,14 +12,25 @@ without any stengmc code. It asserts, against the files' own datasets read with 
 - the named dimensions of the main datasets (V over "time", asperity traces over
   ("asperity", "time"), ensemble tables over "realisation", spectra over "frequency"...);
 - that coordinates equal the datasets they label (/time, /spectrum/frequency, ids);
-- that every variable xarray shows has CF `units` and `long_name`, and holds exactly the
+- that every variable xarray shows has a `long_name` and CF `units`, or, where it has no
+  single unit (a column per parameter, a law parameter whose unit is its family's), no
+  units and a `comment` giving the unit of each part; and that it holds exactly the
   values h5py reads (no decoding alters them);
+- that netCDF-C's `ncdump -h` reads every file, that the root says
+  Conventions = "CF-1.10", and that UDUNITS-2's `udunits2` parses every `units`
+  attribute of every file (each failing string is reported with its variables);
 - that every dataset of the file appears as a variable of its group, or is one of the
   pure dimensions the writer made (so nothing is hidden).
-xarray and h5netcdf are declared dependencies (scripts/setup.sh): their absence fails.
+xarray, h5netcdf, ncdump (netcdf-bin) and udunits2 (udunits-bin) are declared
+dependencies (scripts/setup.sh): their absence fails.
+
+    test_netcdf_outputs.py --check-units FILE...
+
+checks only the last three points on existing files (to try the check on a planted bad unit).
 """
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -79,9 +90,11 @@ def check_every_group(path):
                     if key not in ds.variables:
                         continue
                     variable = ds.variables[key]
-                    for attribute in ("units", "long_name"):
-                        check(isinstance(variable.attrs.get(attribute), str) and variable.attrs[attribute],
-                              f"{name}/{key}: no {attribute}")
+                    described = lambda attribute: isinstance(variable.attrs.get(attribute), str) and variable.attrs[  # noqa: E731
+                        attribute] != ""
+                    check(described("long_name"), f"{name}/{key}: no long_name")
+                    check(described("units") or ("units" not in variable.attrs and described("comment")),
+                          f"{name}/{key}: no units (nor a comment saying why there is none)")
                     check(len(variable.dims) == item.ndim, f"{name}/{key}: {variable.dims} for a {item.ndim}-D dataset")
                     stored = item[()]
                     if item.dtype.kind in "iuf":
@@ -90,6 +103,50 @@ def check_every_group(path):
                     else:  # text: xarray gives str objects
                         expected = [s.decode() if isinstance(s, bytes) else s for s in np.ravel(stored)]
                         check(list(np.ravel(variable.values)) == expected, f"{name}/{key}: text differs")
+
+
+def tool(name, package):
+    found = shutil.which(name)
+    if not found:
+        raise SystemExit(f"{name} is not installed (Debian package {package}; scripts/setup.sh installs it)")
+    return found
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def check_netcdf_c_and_units(paths):
+    """ncdump -h reads each file; the root says CF-1.10; UDUNITS-2 parses every units."""
+    ncdump, udunits2 = tool("ncdump", "netcdf-bin"), tool("udunits2", "udunits-bin")
+    units = {}  # each distinct string: the variables that carry it
+    for path in paths:
+        name = os.path.basename(path)
+        done = subprocess.run([ncdump, "-h", path], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        check(done.returncode == 0, f"{name}: ncdump -h fails ({done.returncode}): {done.stdout[-500:]}")
+        with h5py.File(path, "r") as f:
+            check(text(f.attrs.get("Conventions", "")) == "CF-1.10",
+                  f"{name}: root Conventions is {f.attrs.get('Conventions')!r}, not 'CF-1.10'")
+            f.visititems(lambda key, node: units.setdefault(text(node.attrs["units"]), []).append(f"{name}:/{key}")
+                         if "units" in node.attrs else None)
+    for unit, where in sorted(units.items()):
+        # The tool reads a leading number as the value ("1/s" would be 1 of "/s"), so the
+        # unit is given after an explicit value of 1; "-W ''" asks for its definition.
+        done = subprocess.run([udunits2, "-H", f"1 {unit}", "-W", ""], stdin=subprocess.DEVNULL,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        check(unit.strip() != "" and done.returncode == 0,
+              f"units {unit!r} does not parse with UDUNITS-2 ({done.stdout.strip()}): {', '.join(where[:5])}"
+              + (f" and {len(where) - 5} more" if len(where) > 5 else ""))
+    return len(units)
+
+
+def report(success):
+    if FAILURES:
+        print(f"{len(FAILURES)} failures:")
+        print("\n".join("  " + f for f in FAILURES))
+        return 1
+    print(success)
+    return 0
 
 
 def dims(path, group, variable):
@@ -169,9 +226,15 @@ def device_study():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--binary", required=True)
+    parser.add_argument("--binary")
     parser.add_argument("--work-dir")
+    parser.add_argument("--check-units", nargs="+", metavar="FILE")
     args = parser.parse_args()
+    if args.check_units:
+        distinct = check_netcdf_c_and_units(args.check_units)
+        return report(f"{len(args.check_units)} files: ncdump -h reads them, CF-1.10, {distinct} units all parse")
+    if not args.binary:
+        parser.error("--binary is required")
     binary = os.path.abspath(args.binary)
     with tempfile.TemporaryDirectory(prefix="stengmc-netcdf-") as scratch:
         work = os.path.abspath(args.work_dir) if args.work_dir else scratch
@@ -212,6 +275,7 @@ def main():
                  "inverse.h5"]
         for name in files:
             check_every_group(out(name))
+        distinct_units = check_netcdf_c_and_units([out(name) for name in files])
 
         for name in ("run.h5", "random.h5"):
             r = out(name)
@@ -300,12 +364,8 @@ def main():
         expect_coordinate(i, trace, "time", trace + "/time")
         expect_dims(i, trace, "model", ("time",))
 
-    if FAILURES:
-        print(f"{len(FAILURES)} failures:")
-        print("\n".join("  " + f for f in FAILURES))
-        return 1
-    print(f"all {len(files)} output kinds open in xarray with named dimensions, units and long names")
-    return 0
+    return report(f"all {len(files)} output kinds open in xarray with named dimensions, units and long names, "
+                  f"ncdump -h reads them, and UDUNITS-2 parses their {distinct_units} distinct units")
 
 
 if __name__ == "__main__":
