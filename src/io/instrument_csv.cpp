@@ -145,12 +145,10 @@ Layout tektronix_layout(const std::vector<Fields>& head, const std::string& path
   return layout;
 }
 
-//! Keysight/Agilent InfiniiVision (2000/3000/4000 X user's guides, "CSV data"): a row of
-//! channel numbers `x-axis,1[,2...]`, a units row `second,Volt[,Volt...]`, then the samples.
-Layout keysight_layout(const std::vector<Fields>& head, const std::string& path) {
-  if (head.size() < 2 || head[1].size() != head[0].size())
-    fail(path, 2, "a Keysight export has a units row (`second,Volt`) with one unit per column of `" +
-                      text_excerpt(head[0].empty() ? "" : head[0][0]) + ",...` under its header");
+//! The names on line 1, a unit per column on line 2, the samples from line 3 (Keysight and
+//! PicoScope); `missing` says what a file without that units row lacks.
+Layout header_and_units_layout(const std::vector<Fields>& head, const std::string& path, const std::string& missing) {
+  if (head.size() < 2 || head[1].size() != head[0].size()) fail(path, 2, missing);
   Layout layout;
   layout.names = head[0];
   layout.units = head[1];
@@ -158,6 +156,13 @@ Layout keysight_layout(const std::vector<Fields>& head, const std::string& path)
   layout.data_line = 2;
   layout.channels = columns_after_time(layout.names.size());
   return layout;
+}
+
+//! Keysight/Agilent InfiniiVision (2000/3000/4000 X user's guides, "CSV data"): a row of
+//! channel numbers `x-axis,1[,2...]`, a units row `second,Volt[,Volt...]`, then the samples.
+Layout keysight_layout(const std::vector<Fields>& head, const std::string& path) {
+  return header_and_units_layout(head, path, "a Keysight export has a units row (`second,Volt`) with one unit per column of `" +
+                                                 text_excerpt(head.empty() || head[0].empty() ? "" : head[0][0]) + ",...` under its header");
 }
 
 //! Rigol DS1000Z/MSO1000Z CSV: the header `X,CH1[,CH2...],Start,Increment`, then
@@ -207,15 +212,8 @@ Layout lecroy_layout(const std::vector<Fields>& head, const std::string& path) {
 //! PicoScope 6/7 text export (PicoScope 6 user's guide, "Text formats"): the header
 //! `Time,Channel A[,Channel B...]`, a units row `(µs),(V)...`, then the samples; commas or tabs.
 Layout picoscope_layout(const std::vector<Fields>& head, const std::string& path) {
-  if (head.size() < 2 || head[1].size() != head[0].size())
-    fail(path, 2, "a PicoScope export has a units row (`(us),(V)`) with one unit per column under its header");
-  Layout layout;
-  layout.names = head[0];
-  layout.units = head[1];
-  layout.units_line = 2;
-  layout.data_line = 2;
-  layout.channels = columns_after_time(layout.names.size());
-  return layout;
+  return header_and_units_layout(head, path,
+                                 "a PicoScope export has a units row (`(us),(V)`) with one unit per column under its header");
 }
 
 Layout layout_of(RecordFormat format, const std::vector<Fields>& head, const std::string& path) {
