@@ -15,6 +15,7 @@
 #include "inverse/simulated_record.hpp"
 #include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
+#include "support/held_out_coverage.hpp"
 #include "support/inverse_device.hpp"
 
 namespace stengmc {
@@ -98,34 +99,21 @@ TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
   options.seed = 22;
   const CalibrationBank held_out = run_calibration(study, scratch.file("held_out.journal"), options);
 
-  std::size_t records = 0, count_covered = 0, median_records = 0, median_covered = 0, sd_records = 0, sd_covered = 0;
+  const testing::HeldOutCoverage coverage = testing::held_out_coverage(bank, held_out);
+  ASSERT_GE(coverage.records, 190u);
+  const double count_coverage = coverage.count(), median_coverage = coverage.median(), sd_coverage = coverage.sd();
+  std::printf("broadened prior, held-out coverage of the 90 %% intervals: n %.3f (%zu records), median %.3f (%zu), "
+              "sd(ln k) %.3f (%zu)\n",
+              count_coverage, coverage.records, median_coverage, coverage.median_records, sd_coverage, coverage.sd_records);
+  // The warning on the fit is the misfit class's (Inverter::invert).
   std::size_t wrong = 0, wrong_flagged = 0, right = 0, right_flagged = 0, top_right = 0, top_right_flagged = 0;
   for (const CalibrationSample& s : held_out.samples) {
     if (!s.valid) continue;
-    const CalibratedEstimate c = calibrate_estimate(s.raw_estimate(), &bank.maps, bank.setup.prior);
-    ++records;
-    // The warning on the fit is the misfit class's (Inverter::invert).
-    const bool flagged = c.fit_class == FitClass::misfits;
+    const bool flagged = calibrate_estimate(s.raw_estimate(), &bank.maps, bank.setup.prior).fit_class == FitClass::misfits;
     if (s.count != s.true_count()) ++wrong, wrong_flagged += flagged;
     else if (s.count < bank.setup.prior.count_max) ++right, right_flagged += flagged;
     else ++top_right, top_right_flagged += flagged;
-    count_covered += c.interval_low <= s.true_count() && s.true_count() <= c.interval_high;
-    if (s.count >= 1 && s.true_count() >= 1) {
-      ++median_records;
-      median_covered += c.median_low <= s.true_median() && s.true_median() <= c.median_high;
-    }
-    if (s.count >= 2 && s.true_count() >= 2) {
-      ++sd_records;
-      sd_covered += c.sd_log_low <= s.true_sd_log() && s.true_sd_log() <= c.sd_log_high;
-    }
   }
-  ASSERT_GE(records, 190u);
-  const double count_coverage = static_cast<double>(count_covered) / static_cast<double>(records);
-  const double median_coverage = static_cast<double>(median_covered) / static_cast<double>(median_records);
-  const double sd_coverage = static_cast<double>(sd_covered) / static_cast<double>(sd_records);
-  std::printf("broadened prior, held-out coverage of the 90 %% intervals: n %.3f (%zu records), median %.3f (%zu), "
-              "sd(ln k) %.3f (%zu)\n",
-              count_coverage, records, median_coverage, median_records, sd_coverage, sd_records);
   std::printf("the misfit warning (residual > %.3g x the noise) on %zu of %zu wrong counts, %zu of %zu right ones below the "
               "prior's top count, %zu of %zu right ones at it; bank classes: %zu fit, %zu do not\n",
               bank.maps.misfit_ratio, wrong_flagged, wrong, right_flagged, right, top_right_flagged, top_right,
