@@ -220,7 +220,7 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
   CalibratedEstimate out;
   out.calibrated = maps != nullptr;
   out.misfit = noise_misfit(e.residual_sigma_v, e.noise.sigma_v);
-  out.fit_class = maps ? maps->fit_class(out.misfit) : (out.misfit > DEFAULT_MISFIT_RATIO ? FitClass::misfits : FitClass::fits);
+  out.fit_class = fit_class_of(out.misfit, maps ? maps->misfit_ratio : DEFAULT_MISFIT_RATIO);
   const ClassMaps* own = maps ? &maps->of(out.fit_class) : nullptr;
   const std::size_t counts = prior.count_max - prior.count_min + 1;
   for (std::size_t i = 0; i < counts; ++i) out.counts.push_back(prior.count_min + i);

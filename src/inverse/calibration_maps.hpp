@@ -55,6 +55,11 @@ inline constexpr double MISFIT_QUANTILE = 0.85;
 //! The residual's rms over the noise's (1 where no noise was measured above the lines).
 double noise_misfit(double residual_sigma_v, double noise_sigma_v);
 
+//! The class of a record of `misfit` (noise_misfit) for the boundary `misfit_ratio`.
+inline FitClass fit_class_of(double misfit, double misfit_ratio) {
+  return misfit > misfit_ratio ? FitClass::misfits : FitClass::fits;
+}
+
 //! The maps of one fit class.
 struct ClassMaps {
   //! confusion[m - count_min][n - count_min] = P(n | n-hat = m)
@@ -79,7 +84,7 @@ struct CalibrationMaps {
   //! Bank figures (in-sample: optimistic), for the calibrate summary.
   double bank_count_rmse = 0.0, bank_exact_rate = 0.0, bank_naive_rmse = 0.0, bank_naive_exact_rate = 0.0;
 
-  [[nodiscard]] FitClass fit_class(double misfit) const { return misfit > misfit_ratio ? FitClass::misfits : FitClass::fits; }
+  [[nodiscard]] FitClass fit_class(double misfit) const { return fit_class_of(misfit, misfit_ratio); }
   [[nodiscard]] const ClassMaps& of(FitClass c) const { return classes[static_cast<std::size_t>(c)]; }
 };
 
