@@ -22,6 +22,12 @@ class Study:
             raise AttributeError(name)
         return getattr(self._study, name)
 
+    def __dir__(self):
+        # The study's attributes live on the extension's object: list them, so tab completion
+        # and dir() in a notebook show what there is to read.
+        own = set(super().__dir__())
+        return sorted(own | {name for name in dir(self._study) if not name.startswith("_")})
+
     def run(self, realisation=0, progress=False):
         """Runs one realisation (as `stengmc run --realisation R`, 0 <= R < 2**63); a Run."""
         realisation = whole_number("realisation", realisation, 0, MAX_REALISATION)
