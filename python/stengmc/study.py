@@ -3,6 +3,7 @@ import os
 
 from . import _core
 from .arguments import MAX_REALISATION, whole_number
+from .progress import Progress
 from .results import Ensemble, Run
 from .toml_text import toml_text
 
@@ -35,9 +36,19 @@ class Study:
 
     def run_ensemble(self, threads=0, progress=False):
         """Runs every realisation of the [ensemble] (0 threads: every core; at most
-        _core.MAX_THREADS, 1024); an Ensemble. The records are the same for any number of threads."""
+        _core.MAX_THREADS, 1024); an Ensemble. The records are the same for any number of threads.
+
+        progress: False (nothing), True (a tqdm bar when tqdm is installed, else the
+        library's bar on stderr), or a callable(done, total) called as each realisation
+        finishes, counting over the whole job (every grid point of a sweep); it is called
+        from a worker thread, one call at a time, and an exception it raises stops the
+        ensemble and is raised here."""
         threads = whole_number("threads", threads, 0, _core.MAX_THREADS)
-        return Ensemble(_core.run_ensemble(self._study, threads, progress))
+        reporter = Progress(progress)
+        try:
+            return Ensemble(_core.run_ensemble(self._study, threads, reporter.library_bar, reporter.on_progress))
+        finally:
+            reporter.close()
 
     def __repr__(self):
         return f"<stengmc.Study {self.file!r}: {self.model}, {self.duration_s:g} s at {self.sample_rate_hz:g} Hz>"
