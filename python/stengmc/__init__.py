@@ -14,6 +14,7 @@ from .opening import open
 from .output_file import OutputFile
 from .results import Ensemble, Run
 from .run_file import RunFile
+from .spectrum import spectrum
 from .study import Study, load_study
 from .toml_text import toml_text
 
@@ -32,5 +33,5 @@ def run_ensemble(study, threads=0, progress=False):
 
 
 __all__ = ["Ensemble", "Error", "InputError", "ModelError", "OutputFile", "Run", "RunFile", "Study", "invert",
-           "load_study", "open", "run",
+           "load_study", "open", "run", "spectrum",
            "run_ensemble", "toml_text", "git_revision"]
