@@ -13,4 +13,5 @@ PYBIND11_MODULE(_core, m) {
   stengmc::python::bind_ensemble(m);
   stengmc::python::bind_invert(m);
   stengmc::python::bind_spectrum(m);
+  stengmc::python::bind_circuit(m);
 }

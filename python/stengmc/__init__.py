@@ -8,6 +8,7 @@ measured record (README: Python; docs/python.md).
     stengmc.open("results/fig2_k155.h5").to_xarray()   # any output file: group -> xarray.Dataset
 """
 from . import _core
+from .circuit import circuit
 from .errors import Error, InputError, ModelError
 from .inverse import invert
 from .opening import open
@@ -32,6 +33,6 @@ def run_ensemble(study, threads=0, progress=False):
     return (study if isinstance(study, Study) else load_study(study)).run_ensemble(threads, progress)
 
 
-__all__ = ["Ensemble", "Error", "InputError", "ModelError", "OutputFile", "Run", "RunFile", "Study", "invert",
+__all__ = ["circuit", "Ensemble", "Error", "InputError", "ModelError", "OutputFile", "Run", "RunFile", "Study", "invert",
            "load_study", "open", "run", "spectrum",
            "run_ensemble", "toml_text", "git_revision"]
