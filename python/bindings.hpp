@@ -9,5 +9,7 @@ void bind_study(pybind11::module_& m);     //!< study_binding.cpp: Study, read_s
 void bind_run(pybind11::module_& m);       //!< run_binding.cpp: one realisation
 void bind_ensemble(pybind11::module_& m);  //!< ensemble_binding.cpp: an [ensemble] study
 void bind_invert(pybind11::module_& m);    //!< invert_binding.cpp: the inverse estimator
+void bind_spectrum(pybind11::module_& m);  //!< spectrum_binding.cpp: a record's spectra from numpy
+void bind_circuit(pybind11::module_& m);   //!< circuit_binding.cpp: the circuit driven by numpy displacements
 
 }  // namespace stengmc::python

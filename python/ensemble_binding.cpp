@@ -141,7 +141,22 @@ void add_grid(py::dict& out, const StudyFile& base, const std::vector<GridPoint>
   out["text"] = text;
 }
 
-py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
+//! The Python callable `on_progress(done, total)` over the whole job (every grid point of a
+//! sweep, each of the study's realisations), called from the worker that delivers a record:
+//! it takes the interpreter's lock for the call (the computing thread released it). An
+//! exception it raises stops the ensemble and comes out of run_ensemble.
+//! A handle, not an object: copying the std::function (without the lock) must not touch the
+//! callable's reference count; run_ensemble's caller holds the callable until it returns.
+std::function<void(std::size_t, std::size_t)> python_progress(py::handle on_progress, std::size_t before,
+                                                               std::size_t job_total) {
+  if (on_progress.is_none()) return {};
+  return [on_progress, before, job_total](std::size_t done, std::size_t) {
+    py::gil_scoped_acquire acquire;
+    on_progress(before + done, job_total);
+  };
+}
+
+py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress, const py::object& on_progress) {
   if (!base.ensemble)
     throw InputError(base.file + ": has no [ensemble] table: run one realisation with run(), or add [ensemble]");
   if (threads < 0 || threads > MAX_THREADS)
@@ -154,6 +169,8 @@ py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
     for (std::size_t g = 0; g < grid.size(); ++g) {
       EnsembleOptions options{.threads = threads, .restart = true, .show_progress = progress,
                               .limits = WorkLimits{}};
+      const std::size_t per_point = base.ensemble->realisations;
+      options.on_record = python_progress(on_progress, g * per_point, grid.size() * per_point);
       if (grid.size() > 1) options.progress_label = "point " + std::to_string(g + 1) + "/" + std::to_string(grid.size());
       grid[g].run = run_ensemble(grid[g].study, journals.journal(g, grid.size()), options);
       grid[g].summary = summarise_ensemble(grid[g].run.records, base.seed);
@@ -172,8 +189,10 @@ py::dict run_ensemble_study(const StudyFile& base, int threads, bool progress) {
 void bind_ensemble(py::module_& m) {
   m.attr("MAX_THREADS") = MAX_THREADS;  // stengmc.Study.run_ensemble checks `threads` against it
   m.def("run_ensemble", &run_ensemble_study, py::arg("study"), py::arg("threads") = 0, py::arg("progress") = false,
+        py::arg("on_progress") = py::none(),
         "Runs every realisation of an [ensemble] study (each grid point of a sweep) on `threads` threads "
-        "(0: OMP_NUM_THREADS or every core); the ensemble file's records and statistics as dicts");
+        "(0: OMP_NUM_THREADS or every core); the ensemble file's records and statistics as dicts. progress: the "
+        "library's bar on stderr; on_progress: a callable (done, total) over the whole job");
 }
 
 }  // namespace stengmc::python

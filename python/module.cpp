@@ -12,4 +12,6 @@ PYBIND11_MODULE(_core, m) {
   stengmc::python::bind_run(m);
   stengmc::python::bind_ensemble(m);
   stengmc::python::bind_invert(m);
+  stengmc::python::bind_spectrum(m);
+  stengmc::python::bind_circuit(m);
 }

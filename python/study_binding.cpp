@@ -20,7 +20,9 @@ void bind_study(py::module_& m) {
       .def_readonly("surface_file", &StudyFile::surface_file, "the surface file it names, or '' when inline")
       .def_property_readonly("output_file", [](const StudyFile& s) { return s.output.file; }, "where `stengmc run` would write")
       .def_property_readonly("model", [](const StudyFile& s) { return std::string(model_name(s.model)); })
-      .def_property_readonly("random_surface", [](const StudyFile& s) { return s.surface->random_surface(); },
+      // A bool, as documented: the library's accessor returns the surface's description
+      // (a RandomSurface pointer), a type the module does not expose.
+      .def_property_readonly("random_surface", [](const StudyFile& s) { return s.surface->random_surface() != nullptr; },
                              "true when every realisation draws its own asperities")
       .def_property_readonly("is_ensemble", [](const StudyFile& s) { return s.ensemble.has_value(); },
                              "true when the study has an [ensemble] table")

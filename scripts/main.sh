@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, runs the paper's studies, the shipped
+# The main job: installs what is missing, builds, installs the Python module (as root,
+# system-wide with pip: scripts/install_python.sh), runs the paper's studies, the shipped
 # random surfaces and a quick ensemble with their figures, then the quick inverse demo (a
 # small calibration bank and one synthetic record inverted), and ends with where
 # everything is.
@@ -7,6 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
+bash scripts/install_python.sh
 bash scripts/run_paper_studies.sh
 bash scripts/run_surface_examples.sh
 bash scripts/run_ensemble_examples.sh

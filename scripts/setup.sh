@@ -14,6 +14,7 @@ packages=(
   python3-scipy  # bench/compare_scipy.py: the peer for one asperity-run
   python3-xarray python3-h5netcdf  # outputs open as labelled arrays (test Io.OutputsOpenInXarray)
   pybind11-dev python3-dev python3-pytest  # the Python module (python/) and its tests
+  python3-pip python3-venv python3-setuptools python3-wheel python3-build  # pip install . / a wheel, offline (docs/python.md)
   netcdf-bin udunits-bin  # test Io.OutputsOpenInXarray: ncdump -h reads every output, udunits2 parses every unit
 )
 

@@ -5,11 +5,17 @@ measured record (README: Python; docs/python.md).
     import stengmc
     study = stengmc.load_study("studies/paper/fig2_k155.toml")
     run = study.run()                  # run.time_s, run.voltage_v, run.summary, ...
+    stengmc.open("results/fig2_k155.h5").to_xarray()   # any output file: group -> xarray.Dataset
 """
 from . import _core
+from .circuit import circuit
 from .errors import Error, InputError, ModelError
 from .inverse import invert
+from .opening import open
+from .output_file import OutputFile
 from .results import Ensemble, Run
+from .run_file import RunFile
+from .spectrum import spectrum
 from .study import Study, load_study
 from .toml_text import toml_text
 
@@ -27,5 +33,6 @@ def run_ensemble(study, threads=0, progress=False):
     return (study if isinstance(study, Study) else load_study(study)).run_ensemble(threads, progress)
 
 
-__all__ = ["Ensemble", "Error", "InputError", "ModelError", "Run", "Study", "invert", "load_study", "run",
+__all__ = ["circuit", "Ensemble", "Error", "InputError", "ModelError", "OutputFile", "Run", "RunFile", "Study", "invert",
+           "load_study", "open", "run", "spectrum",
            "run_ensemble", "toml_text", "git_revision"]

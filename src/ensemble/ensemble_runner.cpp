@@ -111,7 +111,8 @@ void run_locally(const std::vector<std::uint64_t>& ids, int threads, const Compu
 //! (if any) and `done`.
 void run_batch(const StudyFile& study, const std::vector<std::uint64_t>& ids, int threads, const WorkLimits& limits,
                Journal* journal, std::map<std::uint64_t, RealisationRecord>& done, Progress* progress,
-               RunningStatus& status, const RealisationHook& hook, WorkDistributor* distributor) {
+               RunningStatus& status, const RealisationHook& hook, WorkDistributor* distributor,
+               const std::function<void()>& on_record = {}) {
   std::vector<RealisationRecord> results;
   results.reserve(ids.size());
   std::mutex mutex;
@@ -125,6 +126,7 @@ void run_batch(const StudyFile& study, const std::vector<std::uint64_t>& ids, in
         progress->set_status(status.line());
         progress->advance();
       }
+      if (on_record) on_record();
       results.push_back(std::move(record));
     }
   };
@@ -211,6 +213,10 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
       progress.emplace(options.progress_label, to_run - done.size());
       if (options.job_start) progress->set_job_share(*options.job_start, options.job_before, options.job_share);
     }
+    std::size_t delivered = 0;  // counted under run_batch's lock, so one call at a time
+    const std::size_t total = to_run - done.size();
+    std::function<void()> on_record;
+    if (options.on_record) on_record = [&] { options.on_record(++delivered, total); };
     // Without a target, one batch of everything balances the threads best.
     const std::uint64_t batch = settings.target ? settings.batch : settings.realisations;
     for (std::uint64_t first = 0; first < settings.realisations; first += batch) {
@@ -219,7 +225,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
       for (std::uint64_t id = first; id < end; ++id)
         if (!done.count(id) && in_slice(id)) ids.push_back(id);
       run_batch(study, ids, run.threads, options.limits, &journal, done, progress ? &*progress : nullptr, status, hook,
-                distributor ? &*distributor : nullptr);
+                distributor ? &*distributor : nullptr, on_record);
       const auto width = settings.target ? target_half_width(study, done, end) : std::nullopt;
       if (width && *width <= settings.target_half_width && end < settings.realisations) {
         run.stopped_at_target = true;

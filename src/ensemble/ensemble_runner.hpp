@@ -35,6 +35,11 @@ struct EnsembleOptions {
   //! [job_before, job_before + job_share]: the progress then gives the whole job's ETA too.
   std::optional<std::chrono::steady_clock::time_point> job_start{};
   double job_before = 0.0, job_share = 1.0;
+  //! Called as each realisation's record is delivered, one call at a time (under the runner's
+  //! lock, in the delivering thread): how many this run has finished and how many it runs
+  //! (resumed ones excluded; with a target it may stop short). The Python module passes a
+  //! callable through it: a notebook cell does not show stderr, where show_progress draws.
+  std::function<void(std::size_t done, std::size_t total)> on_record{};
 };
 
 //! A caller's own reduction of every realisation, run in the worker thread as each record

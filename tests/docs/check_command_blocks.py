@@ -69,6 +69,11 @@ COMMANDS = {
     "cmake -S . -B build -DSTENGMC_BUILD_BENCHMARKS=ON && bash bench/run_all.sh": "the benchmarks (~4 min plus a build)",
     "cmake -S . -B build && cmake --build build -j2": "the build itself, done before any test runs",
     "PYTHONPATH=build/python /usr/bin/python3 -c \"import stengmc; print(stengmc.__version__)\"": RUN,
+    "python3 -m venv --system-site-packages ~/stengmc-venv":
+        "a venv in the user's home; Python.PipInstallIntoAVenv makes one in a temporary folder and pip-installs the clone",
+    "python3 -m build --no-isolation --wheel":
+        "builds in the clone's build-python/ and dist/, which the scratch clone lacks; "
+        "Python.PipInstallIntoAVenv runs the same setup.py through pip",
     "/usr/bin/python3 scripts/contact_sheet.py build/tests/paper-results build/tests/surface-results "
     "build/tests/ensemble-results build/tests/inverse-demo-results --out results/contact_sheet.png "
     "--thumbnails docs/figures/contact --width 520":
