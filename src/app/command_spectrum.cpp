@@ -56,7 +56,10 @@ void run(const SpectrumOptions& options) {
     check_work(estimate_spectrum(static_cast<double>(check_input_file(options.input, "the signal CSV file")) / 4.0, 0.0,
                                  settings),
                options.limits.limits(), options.input + ": reading it");
-  const SignalInput signal = csv ? read_record_text(options.input, options.record.read()) : read_signal_hdf5(options.input);
+  const RecordReadOptions how = options.record.read();
+  const SignalInput signal = csv                        ? read_record_text(options.input, how)
+                             : !how.hdf5.dataset.empty() ? read_hdf5_record(options.input, how.hdf5)
+                                                         : read_signal_hdf5(options.input);
   check_work(estimate_spectrum(static_cast<double>(signal.times_s.size()), static_cast<double>(signal.currents_a.size()),
                                settings),
              options.limits.limits(), options.input + ": the analysis");

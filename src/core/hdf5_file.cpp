@@ -1,8 +1,8 @@
 #include "core/hdf5_file.hpp"
 
+#include <hdf5_hl.h>
+
 #include <algorithm>
-
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -418,6 +418,27 @@ std::vector<double> Hdf5Reader::vector(const std::string& path) const {
     std::vector<double> values(dims[0]);
     if (!values.empty()) dataset.read(values.data(), H5::PredType::NATIVE_DOUBLE);
     return values;
+  });
+}
+
+std::optional<std::string> Hdf5Reader::dimension_scale(const std::string& path, unsigned axis) const {
+  if (!has(path)) throw InputError(path_ + ": dataset " + path + " is missing");
+  return reading(path_, path, [&] {
+    const H5::DataSet dataset = file_.openDataSet(path);
+    std::optional<std::string> found;
+    if (H5DSget_num_scales(dataset.getId(), axis) <= 0) return found;
+    // The first scale attached: its name is the path it was opened by.
+    auto first = [](hid_t, unsigned, hid_t scale, void* out) -> herr_t {
+      const ssize_t length = H5Iget_name(scale, nullptr, 0);
+      if (length <= 0) return 0;
+      std::string name(static_cast<std::size_t>(length) + 1, '\0');
+      H5Iget_name(scale, name.data(), name.size());
+      name.resize(static_cast<std::size_t>(length));
+      *static_cast<std::optional<std::string>*>(out) = name;
+      return 1;  // stop at it
+    };
+    H5DSiterate_scales(dataset.getId(), axis, nullptr, first, &found);
+    return found;
   });
 }
 

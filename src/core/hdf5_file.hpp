@@ -139,6 +139,9 @@ class Hdf5Reader {
   [[nodiscard]] std::optional<double> number_attribute(const std::string& object, const std::string& name) const;
   //! Integer attribute, or nothing when absent.
   [[nodiscard]] std::optional<std::int64_t> integer_attribute(const std::string& object, const std::string& name) const;
+  //! The path of the dimension scale attached to axis `axis` of dataset `path` (the HDF5
+  //! Dimension Scale API: how netCDF-4 and xarray store a coordinate), or nothing when none is.
+  [[nodiscard]] std::optional<std::string> dimension_scale(const std::string& path, unsigned axis) const;
 
  private:
   std::string path_;

@@ -152,9 +152,9 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
         const double energy = proposals_.score(state.atoms[i], zeros, state.amplitude, state.damping_rate_per_s).energy_v2;
         if (energy < weakest_energy) weakest_energy = energy, weakest = i;
       }
-      FitState start = state;
-      start.atoms.erase(start.atoms.begin() + static_cast<std::ptrdiff_t>(weakest));
-      OrderFit pruned = fit.refine(start, {}, true, true, options_.max_iterations);
+      FitState without_weakest = state;
+      without_weakest.atoms.erase(without_weakest.atoms.begin() + static_cast<std::ptrdiff_t>(weakest));
+      OrderFit pruned = fit.refine(without_weakest, {}, true, true, options_.max_iterations);
       const OrderFit& below = fits[n - 1];
       if (!(pruned.residual_v2 / sigma2 + pruned.penalty < below.residual_v2 / sigma2 + below.penalty)) break;
       fits[n - 1] = std::move(pruned);

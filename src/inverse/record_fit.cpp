@@ -162,8 +162,14 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
   std::vector<AtomValues> values(moving.size());
   AtomSums sums;
   // The objective at `st` (linear parameters solved into it): whitened RSS / sigma^2 plus the
-  // loads' prior; with `jacobian`, the whitened, projected Jacobian of the model.
-  auto evaluate = [&](FitState& st, Eigen::MatrixXd* jacobian, double* rss_out, double* penalty_out) {
+  // loads' prior; with `normal`, the normal equations of the whitened, projected Jacobian
+  // P J (P projects out the linear parameters' columns): (P J)^T (P J) into `normal` and
+  // (P J)^T r into `gradient`. P J itself is never formed: with Q an orthonormal basis of
+  // those columns and B = Q^T J, (P J)^T (P J) = J^T J - B^T B and (P J)^T r = J^T r - B^T Q^T r,
+  // which spares an M x p product and its subtraction at every step.
+  Eigen::MatrixXd jacobian_scratch;
+  auto evaluate = [&](FitState& st, Eigen::MatrixXd* normal, Eigen::VectorXd* gradient, double* rss_out, double* penalty_out) {
+    Eigen::MatrixXd* jacobian = normal ? &jacobian_scratch : nullptr;
     sums = frozen;
     for (std::size_t k = 0; k < moving.size(); ++k)
       model_->add(st.atoms[moving[k]], st.damping_rate_per_s, sums, &values[k], jacobian != nullptr);
@@ -200,6 +206,11 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
         std::span<double> column(jacobian->col(col).data(), m_count);
         whitener_.apply(column, column);
       }
+      const Eigen::Map<const Eigen::VectorXd> residual_vector(r.data(), static_cast<Eigen::Index>(m_count));
+      normal->setZero(jacobian->cols(), jacobian->cols());
+      normal->selfadjointView<Eigen::Lower>().rankUpdate(jacobian->transpose());
+      *normal = normal->selfadjointView<Eigen::Lower>();
+      *gradient = jacobian->transpose() * residual_vector;
       // Variable projection: the linear parameters' columns projected out.
       std::vector<const double*> linear;
       if (L.amplitude_free) linear.push_back(wunit.data());
@@ -210,7 +221,9 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
           q.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Eigen::VectorXd>(linear[l], static_cast<Eigen::Index>(m_count));
         const Eigen::HouseholderQR<Eigen::MatrixXd> qr(q);
         const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(q.rows(), q.cols());
-        *jacobian -= basis * (basis.transpose() * *jacobian);
+        const Eigen::MatrixXd b = basis.transpose() * *jacobian;
+        *normal -= b.transpose() * b;
+        *gradient -= b.transpose() * (basis.transpose() * residual_vector);
       }
     }
     return rss / sigma2 + penalty;
@@ -234,21 +247,21 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
   Eigen::VectorXd x = pack(s);
   clamp_into(x);
   unpack(x, s);
-  Eigen::MatrixXd jacobian;
+  Eigen::MatrixXd normal_jj;    // (P J)^T (P J) at x
+  Eigen::VectorXd jacobian_r;   // (P J)^T r at x
   double rss = 0.0, penalty = 0.0;
-  double objective = evaluate(s, p_count > 0 ? &jacobian : nullptr, &rss, &penalty);
+  double objective = evaluate(s, p_count > 0 ? &normal_jj : nullptr, &jacobian_r, &rss, &penalty);
   if (p_count > 0) {
     double lambda = 1e-3;
     FitState trial_state = s;
     double trial_rss = 0.0, trial_penalty = 0.0;
     for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
       fit.iterations = iteration + 1;
-      const Eigen::Map<const Eigen::VectorXd> residual_vector(r.data(), static_cast<Eigen::Index>(m_count));
       Eigen::VectorXd prior_gradient, prior_curvature;
       prior_terms(x, prior_gradient, prior_curvature);
       // Minimising rss / sigma^2 + penalty: (J^T J / sigma^2 + P) dx = J^T r / sigma^2 - grad(penalty) / 2.
-      const Eigen::MatrixXd normal = jacobian.transpose() * jacobian / sigma2;
-      const Eigen::VectorXd gradient = jacobian.transpose() * residual_vector / sigma2 - 0.5 * prior_gradient;
+      const Eigen::MatrixXd normal = normal_jj / sigma2;
+      const Eigen::VectorXd gradient = jacobian_r / sigma2 - 0.5 * prior_gradient;
       bool accepted = false;
       double gain = 0.0;
       while (lambda < 1e10) {
@@ -258,12 +271,12 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
         clamp_into(trial_x);
         trial_state = s;
         unpack(trial_x, trial_state);
-        const double trial_objective = evaluate(trial_state, nullptr, &trial_rss, &trial_penalty);
+        const double trial_objective = evaluate(trial_state, nullptr, nullptr, &trial_rss, &trial_penalty);
         if (trial_objective < objective) {
           gain = objective - trial_objective;
           x = trial_x;
           s = trial_state;
-          objective = evaluate(s, &jacobian, &rss, &penalty);  // the Jacobian at the new point
+          objective = evaluate(s, &normal_jj, &jacobian_r, &rss, &penalty);  // the Jacobian at the new point
           lambda = std::max(lambda / 3.0, 1e-12);
           accepted = true;
           break;
@@ -286,10 +299,9 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
     p_count = moving.size() * per_atom + (shared ? L.shared() : 0);
     frozen.reset(m_count);
     values.assign(moving.size(), AtomValues{});
-    Eigen::MatrixXd j_full;
+    Eigen::VectorXd unused_gradient;
     FitState final_state = fit.state;
-    evaluate(final_state, &j_full, nullptr, nullptr);
-    fit.normal_matrix = j_full.transpose() * j_full;
+    evaluate(final_state, &fit.normal_matrix, &unused_gradient, nullptr, nullptr);
   }
   return fit;
 }

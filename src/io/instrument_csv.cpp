@@ -304,6 +304,7 @@ std::string lower_extension(const std::string& path) {
 }  // namespace
 
 bool is_record_text(const std::string& path, const RecordReadOptions& options) {
+  if (!options.hdf5.dataset.empty()) return false;
   const std::string extension = lower_extension(path);
   return options.format != RecordFormat::automatic || extension == ".csv" || extension == ".tsv" || extension == ".txt";
 }

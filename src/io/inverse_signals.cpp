@@ -6,6 +6,7 @@
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
 #include "io/guarded_read.hpp"
+#include "io/hdf5_record.hpp"
 #include "io/instrument_csv.hpp"
 #include "io/run_file.hpp"
 #include "io/signal_input.hpp"
@@ -58,6 +59,10 @@ std::vector<NamedRecord> read_hdf5_records(const std::string& path) {
 
 std::vector<NamedRecord> read_inverse_records(const std::string& path, const RecordReadOptions& text) {
   if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
+  if (!text.hdf5.dataset.empty()) {
+    SignalInput s = read_hdf5_record(path, text.hdf5);
+    return {{path + "#" + text.hdf5.dataset, std::move(s.times_s), std::move(s.voltage_v)}};
+  }
   if (is_record_text(path, text)) {
     SignalInput s = read_record_text(path, text);
     return {{path, std::move(s.times_s), std::move(s.voltage_v)}};

@@ -1,6 +1,7 @@
 #pragma once
 //! The records `stengmc invert` reads (docs/inverse.md): a CSV `t,V` or an oscilloscope's
-//! text export (io/instrument_csv.hpp); a stengmc
+//! text export (io/instrument_csv.hpp); a dataset of another program's HDF5 file
+//! (io/hdf5_record.hpp); a stengmc
 //! run (or circuit) file, its /circuit/measured_voltage when it has one, else
 //! /circuit/voltage; or a stengmc ensemble file, every kept trace (measured_voltage when
 //! the study had [noise]) as one record.
@@ -17,7 +18,8 @@ struct NamedRecord {
   std::vector<double> voltage_v;
 };
 
-//! @param text how to read a text record (`--format`, `--column`); HDF5 files ignore it.
+//! @param text how to read a text record (`--format`, `--column`), or the dataset of a record
+//! in another program's HDF5 file (`--dataset`: one record, named "path#dataset").
 //! @throws InputError for an unreadable file, one without a voltage, or an ensemble without traces.
 std::vector<NamedRecord> read_inverse_records(const std::string& path, const RecordReadOptions& text = {});
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <string>
+#include <utility>
 
 namespace stengmc {
 
@@ -41,6 +42,9 @@ std::optional<double> time_unit_scale(std::string_view unit) {
   const std::string u = bare(unit);
   const std::string word = lower(u);
   if (u.empty() || word == "second" || word == "seconds" || word == "sec") return 1.0;
+  // Spelt out, as CF and UDUNITS write a time coordinate's units ("microseconds since ...").
+  for (const auto& [name, scale] : {std::pair{"millisecond", 1e-3}, {"microsecond", 1e-6}, {"nanosecond", 1e-9}, {"picosecond", 1e-12}})
+    if (word == name || word == std::string(name) + "s") return scale;
   if (u == "ks") return std::nullopt;  // no oscilloscope writes kiloseconds; more likely a typo
   return prefixed(u, "s");
 }

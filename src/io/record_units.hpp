@@ -5,8 +5,9 @@
 
 namespace stengmc {
 
-//! Seconds per `unit`: "s", "second", "ms", "us", "µs", "ns", "ps" (brackets and parentheses
-//! around it ignored, "" meaning s); nothing for anything else.
+//! Seconds per `unit`: "s", "second(s)", "ms", "us", "µs", "ns", "ps", "millisecond(s)" ..
+//! "picosecond(s)" (brackets and parentheses around it ignored, "" meaning s); nothing for
+//! anything else.
 std::optional<double> time_unit_scale(std::string_view unit);
 
 //! Volts per `unit`: "V", "Volt", "mV", "uV", "µV", "kV" (as for time); nothing for anything

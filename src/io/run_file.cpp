@@ -150,9 +150,9 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   // root's netlist_text.
   if (study.netlist) file.attribute("/circuit", "load", "netlist");
   for (std::size_t p = 0; p < study.probes.size() && p < result.circuit.probes.size(); ++p) {
-    const std::string path = "/circuit/probes/" + study.probes[p].dataset;
-    file.write(path, result.circuit.probes[p]);
-    file.attribute(path, "spice_name", study.probes[p].name);
+    const std::string probe_path = "/circuit/probes/" + study.probes[p].dataset;
+    file.write(probe_path, result.circuit.probes[p]);
+    file.attribute(probe_path, "spice_name", study.probes[p].name);
   }
   if (!result.measured_voltage_v.empty()) {
     file.write("/circuit/measured_voltage", result.measured_voltage_v);

@@ -48,7 +48,7 @@ TEST_P(InstrumentRecords, ReadToTheSamplesOfThePlainCsv) {
   const SignalInput plain = read_record_text(example("plain.csv"), {});
   ASSERT_EQ(plain.times_s.size(), 200u);
   for (const RecordFormat format : {RecordFormat::automatic, GetParam().format}) {
-    const SignalInput record = read_record_text(example(GetParam().file), {format, ""});
+    const SignalInput record = read_record_text(example(GetParam().file), {format, "", {}});
     ASSERT_EQ(record.times_s.size(), plain.times_s.size()) << GetParam().file;
     for (std::size_t k = 0; k < plain.times_s.size(); ++k) {
       EXPECT_NEAR(record.times_s[k], plain.times_s[k], 1e-12 * plain.times_s.back()) << GetParam().file << " sample " << k;
@@ -72,9 +72,9 @@ INSTANTIATE_TEST_SUITE_P(Vendors, InstrumentRecords,
                          });
 
 TEST(InstrumentRecord, ColumnPicksAnotherChannel) {
-  const SignalInput second = read_record_text(example("keysight.csv"), {RecordFormat::automatic, "2"});
+  const SignalInput second = read_record_text(example("keysight.csv"), {RecordFormat::automatic, "2", {}});
   EXPECT_TRUE(std::all_of(second.voltage_v.begin(), second.voltage_v.end(), [](double v) { return v == 0.0; }));
-  EXPECT_NE(error_of(example("keysight.csv"), {RecordFormat::automatic, "CH3"})
+  EXPECT_NE(error_of(example("keysight.csv"), {RecordFormat::automatic, "CH3", {}})
                 .find("keysight.csv: --column CH3 is not a voltage column of this record (its columns: 1, 2)"),
             std::string::npos);
 }
@@ -109,7 +109,7 @@ TEST(InstrumentRecord, RejectsAUnitThatIsNotAVoltageAndAnUnknownLayout) {
       << error_of(amps);
   const std::string other = scratch.write("o.csv", "Time (s),Voltage (V)\n0,1\n");
   EXPECT_NE(error_of(other).find("o.csv:1: header must be `t,V`"), std::string::npos) << error_of(other);
-  EXPECT_NE(error_of(example("keysight.csv"), {RecordFormat::rigol, ""}).find("keysight.csv:1: a Rigol header is"),
+  EXPECT_NE(error_of(example("keysight.csv"), {RecordFormat::rigol, "", {}}).find("keysight.csv:1: a Rigol header is"),
             std::string::npos);
 }
 
