@@ -392,8 +392,8 @@ def main():
         expect_dims(r, "/asperity", "current", ("asperity", "time"))
         expect_dims(r, "/spectrum", "current", ("asperity", "frequency"))
         expect_dims(r, "/spectrum/lines", "frequency", ("line",))
-        expect_dims(r, "/spectrogram", "voltage", ("time", "frequency"))
-        expect_coordinate(r, "/spectrogram", "time", "/spectrogram/time")
+        expect_dims(r, "/spectrogram", "voltage", ("window_time", "frequency"))
+        expect_coordinate(r, "/spectrogram", "window_time", "/spectrogram/window_time")
         expect_coordinate(r, "/spectrogram", "frequency", "/spectrogram/frequency")
         expect_dims(out("random.h5"), "/surface/summits", "height_m", ("summit",))
         # A flagged run's circuit spans the leading samples of /time only: its own axis.
@@ -411,7 +411,7 @@ def main():
         s = out("spectrum.h5")
         expect_coordinate(s, "/spectrum", "frequency", "/spectrum/frequency")
         expect_dims(s, "/spectrum", "voltage", ("frequency",))
-        expect_dims(s, "/spectrogram", "voltage", ("time", "frequency"))
+        expect_dims(s, "/spectrogram", "voltage", ("window_time", "frequency"))
 
         p = out("surface.h5")
         expect_coordinate(p, "/realisations", "realisation", "/realisations/realisation")
