@@ -41,6 +41,11 @@ std::optional<DatasetDescription> describe_coordinate(const EnsembleAxes& axes, 
         return DatasetDescription{"", "swept parameter " + axes.parameters[a], {axes.grid_dimension},
                                   "in the unit of the study key " + axes.parameters[a]};
   }
+  if (path.starts_with("/realisations/"))
+    for (std::size_t a = 0; a < axes.variables.size(); ++a)
+      if (name == axes.variables[a])
+        return DatasetDescription{"", "swept parameter " + axes.parameters[a] + " at the member's grid point", {MEMBER},
+                                  "in the unit of the study key " + axes.parameters[a]};
   if (path == "/realisations/member" || path == "/draws/member" || path == "/asperities/member")
     return DatasetDescription{"1", "ensemble member: row of /realisations (by grid point, then realisation id)", {MEMBER}};
   if (path == "/realisations/realisation_boundary")
@@ -92,15 +97,22 @@ void write_grid_coordinates(Hdf5Writer& f, const std::string& group, const Ensem
     for (const std::string& variable : variables) f.attribute(variable, "coordinates", joined(axes.variables));
 }
 
-void write_member_coordinates(Hdf5Writer& f, const std::vector<GridPoint>& grid,
+void write_member_coordinates(Hdf5Writer& f, const EnsembleAxes& axes, const std::vector<GridPoint>& grid,
                               const std::vector<std::string>& realisation_variables, bool draws) {
   std::vector<std::int64_t> counts;
+  std::vector<std::vector<double>> swept(axes.variables.size());  // each member's grid point's values
   for (const GridPoint& point : grid)
-    for (const RealisationRecord& r : point.run.records) counts.push_back(static_cast<std::int64_t>(r.asperity_count()));
+    for (const RealisationRecord& r : point.run.records) {
+      counts.push_back(static_cast<std::int64_t>(r.asperity_count()));
+      for (std::size_t a = 0; a < swept.size(); ++a) swept[a].push_back(point.overrides[a].value);
+    }
   const std::size_t members = counts.size();
   f.write("/realisations/member", indices(members));
   f.write("/realisations/realisation_boundary", indices(members + 1));
-  for (const std::string& variable : realisation_variables) f.attribute(variable, "coordinates", "grid_point realisation");
+  for (std::size_t a = 0; a < swept.size(); ++a) f.write("/realisations/" + axes.variables[a], swept[a]);
+  // set_index(member=[<swept>, "realisation"]) then .sel(<swept>=value) picks a grid point's rows.
+  const std::string coordinates = joined(axes.variables) + (axes.variables.empty() ? "" : " ") + "grid_point realisation";
+  for (const std::string& variable : realisation_variables) f.attribute(variable, "coordinates", coordinates);
   if (draws) f.write("/draws/member", indices(members));
   f.write("/asperities/member", indices(members));
   f.write("/asperities/asperity_count", counts);

@@ -8,7 +8,8 @@
 //!   then `.unstack()` gives one dimension per parameter, the grid being their product);
 //! - /realisations, /draws and /asperities' counts are over "member", one row per
 //!   realisation of every grid point, numbered 0.. without repeats; the realisation id
-//!   (repeated at every grid point) and the grid point are auxiliary coordinates of it;
+//!   (repeated at every grid point), the grid point and its swept values are auxiliary
+//!   coordinates of it;
 //! - /asperities is a CF contiguous ragged array (CF 1.10, 9.3.3): asperity_count over
 //!   "member", with sample_dimension = "asperity", and an index coordinate for "asperity";
 //! - every other dimension of these groups gets an index coordinate.
@@ -39,8 +40,9 @@ void write_grid_coordinates(Hdf5Writer& f, const std::string& group, const Ensem
                             const std::vector<GridPoint>& grid, const std::vector<std::string>& variables);
 
 //! /realisations/member, /draws/member (with draws) and /asperities' ragged-array count and
-//! index; the realisation id and grid point as auxiliary coordinates of /realisations.
-void write_member_coordinates(Hdf5Writer& f, const std::vector<GridPoint>& grid, const std::vector<std::string>& realisation_variables,
-                              bool draws);
+//! index; the realisation id, grid point and swept values as auxiliary coordinates of
+//! /realisations.
+void write_member_coordinates(Hdf5Writer& f, const EnsembleAxes& axes, const std::vector<GridPoint>& grid,
+                              const std::vector<std::string>& realisation_variables, bool draws);
 
 }  // namespace stengmc

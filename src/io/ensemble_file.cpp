@@ -26,7 +26,7 @@ void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoin
   write_grid_coordinates(f, "/grid", axes, grid, {"/grid/values"});
 }
 
-void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid, bool draws) {
+void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid, const EnsembleAxes& axes, bool draws) {
   const RecordTable t = tabulate_records(grid);
   f.write("/realisations/grid_point", t.grid_point);
   f.write("/realisations/realisation", t.realisation);
@@ -38,7 +38,7 @@ void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid, bool 
     per_member.push_back("/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name));
     f.write(per_member.back(), t.scalars[k]);
   }
-  write_member_coordinates(f, grid, per_member, draws);
+  write_member_coordinates(f, axes, grid, per_member, draws);
   for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c)
     f.write("/asperities/" + std::string(column_info(static_cast<AsperityColumn>(c)).name), t.asperities[c]);
 }
@@ -116,7 +116,7 @@ void write_ensemble_file(const std::string& path, const StudyFile& base, const s
   const auto& only = grid.front().run.only;
   file.attribute("/", "only_realisation", static_cast<std::int64_t>(only ? static_cast<std::int64_t>(*only) : -1));
   write_grid(file, base, grid, axes);
-  write_realisations(file, grid, !e.draws.empty());
+  write_realisations(file, grid, axes, !e.draws.empty());
   write_draws(file, base, grid);
   write_traces(file, grid);
   write_summary(file, grid, e.target, axes);

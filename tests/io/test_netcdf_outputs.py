@@ -280,7 +280,19 @@ def grid_point_of(f, values):
 
 
 def check_one_parameter_selects(path):
-    """.sel(swept parameter = value) gives that grid point's summary."""
+    """.sel(swept parameter = value) gives that grid point's summary, and, indexed by the
+    swept value and the realisation id, exactly that grid point's rows of /realisations."""
+    with h5py.File(path, "r") as f, open_group(path, "/realisations") as ds:
+        rows = ds.set_index(member=["surface_summits_count", "realisation"])
+        for value in f["grid/values"][:, 0]:
+            g = grid_point_of(f, [value])
+            picked = rows.sel(surface_summits_count=value)
+            expected = f["realisations/grid_point"][()] == g
+            check(picked.dims.get("realisation") == int(expected.sum())
+                  and np.array_equal(picked["realisation"].values, f["realisations/realisation"][expected])
+                  and np.array_equal(picked["voltage_rms_v"].values, f["realisations/voltage_rms_v"][expected],
+                                     equal_nan=True),
+                  f"sweep.h5: /realisations .sel(surface_summits_count={value}) is not grid point {g}'s rows")
     with h5py.File(path, "r") as f, open_group(path, "/summary/voltage_rms_v") as ds:
         swept = [v for v in f["grid/values"][:, 0]]
         check(sorted(swept) == [1.0, 2.0], f"sweep.h5: the grid is {swept}, not the study's [1, 2]")

@@ -46,11 +46,13 @@ def xarray_coordinate(ensemble, path):
     grid = getattr(ensemble, "grid", None)
     if parts[0] in ("grid", "summary") and parts[-1] == "grid_point":
         return np.arange(len(grid["values"]) if grid else 1)  # without a sweep: one point
-    if parts[0] in ("grid", "summary") and grid:
+    if parts[0] in ("grid", "summary", "realisations") and grid:
         values = np.asarray(grid["values"], dtype=float).reshape(len(grid["values"]), -1)
         swept = [name.replace(".", "_") for name in grid["parameter"]]
         if parts[-1] in swept:
-            return values[:, swept.index(parts[-1])]
+            column = values[:, swept.index(parts[-1])]
+            # /realisations: each member's grid point's value.
+            return column[np.asarray(ensemble.realisations["grid_point"])] if parts[0] == "realisations" else column
     return None
 
 
