@@ -118,7 +118,9 @@ def spectrogram_panel(fig, ax, f, top_hz):
     t_factor, t_unit = unit("s")
     s = f["spectrogram/voltage"][:]
     db = 20 * np.log10(np.maximum(s, s.max() * 1e-5)).T
-    mesh = ax.pcolormesh(f["spectrogram/time"][:] * t_factor, f["spectrogram/frequency"][:] * f_factor, db,
+    # Segment centres: window_time since issue 25 (a "time" here shadowed the root's /time).
+    centres = f["spectrogram/window_time" if "spectrogram/window_time" in f else "spectrogram/time"][:]
+    mesh = ax.pcolormesh(centres * t_factor, f["spectrogram/frequency"][:] * f_factor, db,
                          shading="nearest", cmap="magma", rasterized=True)
     fig.colorbar(mesh, ax=ax, label="dB V", pad=0.01, fraction=0.03)
     ax.set_ylim(0, top_hz * f_factor)

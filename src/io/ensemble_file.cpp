@@ -1,12 +1,14 @@
 #include "io/ensemble_file.hpp"
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <type_traits>
 #include <variant>
 
 #include "core/hdf5_file.hpp"
 #include "ensemble/record_table.hpp"
+#include "io/ensemble_coordinates.hpp"
 #include "io/run_file.hpp"
 #include "io/output_vocabulary.hpp"
 
@@ -14,24 +16,29 @@ namespace stengmc {
 
 namespace {
 
-void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoint>& grid) {
+void write_grid(Hdf5Writer& f, const StudyFile& base, const std::vector<GridPoint>& grid, const EnsembleAxes& axes) {
   const EnsembleSettings& e = *base.ensemble;
   if (e.sweep.empty()) return;
   std::vector<std::string> names;
   for (const SweepAxis& axis : e.sweep) names.push_back(axis.parameter);
   f.write("/grid/parameter", names);
   f.write("/grid/values", tabulate_grid(grid));
+  write_grid_coordinates(f, "/grid", axes, grid, {"/grid/values"});
 }
 
-void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
+void write_realisations(Hdf5Writer& f, const std::vector<GridPoint>& grid, const EnsembleAxes& axes, bool draws) {
   const RecordTable t = tabulate_records(grid);
   f.write("/realisations/grid_point", t.grid_point);
   f.write("/realisations/realisation", t.realisation);
   f.write("/realisations/valid", t.valid);
   f.write("/realisations/failure", t.failure);
   f.write("/realisations/asperity_offset", t.asperity_offset);
-  for (std::size_t k = 0; k < SCALAR_COUNT; ++k)
-    f.write("/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name), t.scalars[k]);
+  std::vector<std::string> per_member{"/realisations/valid", "/realisations/failure"};
+  for (std::size_t k = 0; k < SCALAR_COUNT; ++k) {
+    per_member.push_back("/realisations/" + std::string(scalar_info(static_cast<Scalar>(k)).name));
+    f.write(per_member.back(), t.scalars[k]);
+  }
+  write_member_coordinates(f, axes, grid, per_member, draws);
   for (std::size_t c = 0; c < ASPERITY_COLUMN_COUNT; ++c)
     f.write("/asperities/" + std::string(column_info(static_cast<AsperityColumn>(c)).name), t.asperities[c]);
 }
@@ -60,23 +67,28 @@ void write_traces(Hdf5Writer& f, const std::vector<GridPoint>& grid) {
 }
 
 //! The target's half-width is in the target statistic's unit, which only the settings know.
-void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid, std::optional<Scalar> target) {
+void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid, std::optional<Scalar> target,
+                   const EnsembleAxes& axes) {
+  std::map<std::string, std::vector<std::string>> groups;  // each group's variables, for its coordinates
   for (const SummaryColumn& c : tabulate_summary(grid))
     std::visit(
         [&](const auto& values) {
           const std::string path = "/summary/" + c.group + "/" + c.name;
+          groups["/summary/" + c.group].push_back(path);
           if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>)
             if (target && path == "/summary/target/half_width")
               return f.write_with_units(path, values, scalar_info(*target).unit);
           f.write(path, values);
         },
         c.values);
+  for (const auto& [group, variables] : groups) write_grid_coordinates(f, group, axes, grid, variables);
 }
 
 }  // namespace
 
 void write_ensemble_file(const std::string& path, const StudyFile& base, const std::vector<GridPoint>& grid) {
-  Hdf5Writer file(path, describe_output);
+  const EnsembleAxes axes = ensemble_axes(*base.ensemble);
+  Hdf5Writer file(path, describe_ensemble_output(axes));
   write_provenance(file, {.file_type = "stengmc-ensemble",
                           .input_file = base.file,
                           .input_text = base.text,
@@ -103,11 +115,11 @@ void write_ensemble_file(const std::string& path, const StudyFile& base, const s
   file.attribute("/", "target_half_width", e.target_half_width);
   const auto& only = grid.front().run.only;
   file.attribute("/", "only_realisation", static_cast<std::int64_t>(only ? static_cast<std::int64_t>(*only) : -1));
-  write_grid(file, base, grid);
-  write_realisations(file, grid);
+  write_grid(file, base, grid, axes);
+  write_realisations(file, grid, axes, !e.draws.empty());
   write_draws(file, base, grid);
   write_traces(file, grid);
-  write_summary(file, grid, e.target);
+  write_summary(file, grid, e.target, axes);
   file.commit();
 }
 

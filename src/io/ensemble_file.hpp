@@ -3,7 +3,7 @@
 //!   /grid/          sweeps only: parameter (text, one per axis), values (G x axes)
 //!   /realisations/  one entry per realisation, by grid point then id: grid_point,
 //!                   realisation, valid (0/1), failure (text), every Scalar by name,
-//!                   asperity_offset (entries + 1)
+//!                   asperity_offset (entries + 1); over the dimension "member"
 //!   /asperities/    every AsperityColumn by name, flat over the realisations:
 //!                   realisation j's asperities are [asperity_offset[j], asperity_offset[j+1])
 //!   /draws/         [[ensemble.draw]] only: parameter (text, one per draw), values
@@ -21,6 +21,8 @@
 //!                   title, realisations_requested, realisations_run, valid_realisations,
 //!                   stopped_at_target, target_statistic, target_half_width,
 //!                   only_realisation (the id run by --only, else -1)
+//!   coordinates for xarray (io/ensemble_coordinates.hpp): member, the swept values,
+//!                   /asperities/asperity_count (CF ragged-array count), index coordinates
 //! Nothing in the datasets depends on the number of threads or on interruptions.
 #include <string>
 

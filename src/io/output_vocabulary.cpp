@@ -42,6 +42,7 @@ constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its par
 
 // The dimensions, one name per axis kind across the files:
 //   time               sample instants (/time; a trace's own time)
+//   window_time        spectrogram segment centres (/spectrogram/window_time)
 //   valid_time         the leading samples of /time a flagged run's circuit reached
 //                      ("time|valid_time": time when the circuit spans all of /time)
 //   asperity           asperities of a realisation, or of all realisations in turn
@@ -49,8 +50,9 @@ constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its par
 //   realisation        realisations (coordinate: their ids where the file has them)
 //   realisation_boundary, record_boundary   offsets: one more than realisations/records
 //   frequency          spectrum bins; peak, line: detected peaks and ESPRIT lines
-//   event              stick/slip events; grid_point: sweep points; parameter: swept or
-//                      drawn parameters (coordinate: their names)
+//   event              stick/slip events; grid_point: sweep points (an ensemble file names
+//                      it after a lone swept key, io/ensemble_coordinates); parameter:
+//                      swept or drawn parameters (coordinate: their names)
 //   record             inverse: records (measured signals) or calibration records
 constexpr std::array TERMS{
     // run file (and `circuit` file): the realisation
@@ -102,9 +104,10 @@ constexpr std::array TERMS{
     Term{"/spectrum/identifiability/*/frequency_error", "Hz", "matched frequency minus natural frequency (0 unmatched)",
          "asperity"},
     Term{"/spectrum/identifiability/*/amplitude", "V", "amplitude of the matched peak or line (0 unmatched)", "asperity"},
-    Term{"/spectrogram/time", "s", "segment centre time", "time"},
+    // Its own axis: a dimension "time" here would shadow the root's for netCDF readers.
+    Term{"/spectrogram/window_time", "s", "segment centre time", "window_time"},
     Term{"/spectrogram/frequency", "Hz", "frequency", "frequency"},
-    Term{"/spectrogram/voltage", "V", "amplitude spectrum of the load voltage per segment", "time frequency"},
+    Term{"/spectrogram/voltage", "V", "amplitude spectrum of the load voltage per segment", "window_time frequency"},
     // populations (surface file at /, run file at /surface)
     Term{"*/realisations/realisation", "1", "realisation id", "realisation"},
     Term{"*/realisations/summit_count", "1", "summits drawn", "realisation"},

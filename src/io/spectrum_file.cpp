@@ -65,7 +65,7 @@ void write_spectra(Hdf5Writer& file, const SpectralResult& result, const Spectru
   }
   if (result.spectrogram) {
     const Spectrogram& s = *result.spectrogram;
-    file.write("/spectrogram/time", s.time_s);
+    file.write("/spectrogram/window_time", s.time_s);  // not "time": that would shadow the root's /time
     file.write("/spectrogram/frequency", s.frequency_hz);
     file.write("/spectrogram/voltage", s.amplitude);
     file.attribute("/spectrogram", "window", window_name(settings.spectrogram->window));

@@ -213,6 +213,110 @@ min = 0.1
 max = 0.3
 """
 
+# Two swept parameters: a product grid of 2 x 2 points, over grid_point.
+SWEEP_TWO_PARAMETERS = """
+[[ensemble.sweep]]
+parameter = "surface.summits.count"
+values = [1, 2]
+
+[[ensemble.sweep]]
+parameter = "model.belt_velocity_m_per_s"
+values = [10, 12]
+"""
+
+
+def dimensions_of(path):
+    """Every group with the dimensions xarray sees in it."""
+    found = {}
+    for group in groups_of(path):
+        with open_group(path, group) as ds:
+            found[group] = (set(ds.dims), set(ds.coords))
+    return found
+
+
+def check_every_dimension_has_a_coordinate(path):
+    for group, (dimensions, coordinates) in dimensions_of(path).items():
+        for dimension in sorted(dimensions - coordinates):
+            check(False, f"{os.path.basename(path)}:{group}: dimension {dimension} has no coordinate")
+
+
+def check_members(path):
+    """One row per realisation of every grid point, each selected by a member index of its own."""
+    name = os.path.basename(path)
+    with open_group(path, "/realisations") as ds, h5py.File(path, "r") as f:
+        rows = f["realisations/voltage_rms_v"].shape[0]
+        members = ds["member"].values
+        check(len(members) == rows and len(np.unique(members)) == rows,
+              f"{name}: member is not one unique index per row of /realisations")
+        check("realisation" in ds.coords and "grid_point" in ds.coords,
+              f"{name}: the realisation id and grid point are not coordinates of /realisations")
+        for row in range(rows):
+            picked = ds.sel(member=members[row])
+            check(picked["voltage_rms_v"].ndim == 0 and np.array_equal(
+                picked["voltage_rms_v"].values, f["realisations/voltage_rms_v"][row], equal_nan=True)
+                and int(picked["realisation"]) == f["realisations/realisation"][row]
+                and int(picked["grid_point"]) == f["realisations/grid_point"][row],
+                f"{name}: sel(member={members[row]}) is not row {row} of /realisations")
+
+
+def check_ragged_asperities(path):
+    """CF contiguous ragged array: the counts sum to the sample dimension, as the offsets say."""
+    name = os.path.basename(path)
+    with open_group(path, "/asperities") as ds, h5py.File(path, "r") as f:
+        count = ds["asperity_count"]
+        check(count.attrs.get("sample_dimension") == "asperity",
+              f"{name}: /asperities/asperity_count has no sample_dimension = asperity")
+        check(int(count.values.sum()) == ds.dims["asperity"] == f["asperities/natural_frequency_hz"].shape[0],
+              f"{name}: the asperity counts do not sum to the asperity dimension")
+        check(np.array_equal(count.values, np.diff(f["realisations/asperity_offset"][()])),
+              f"{name}: the asperity counts disagree with /realisations/asperity_offset")
+
+
+def grid_point_of(f, values):
+    """The row of /grid/values holding `values`, read with h5py."""
+    rows = [g for g, row in enumerate(f["grid/values"][()]) if list(row) == list(values)]
+    check(len(rows) == 1, f"no single grid point has the values {values}")
+    return rows[0]
+
+
+def check_one_parameter_selects(path):
+    """.sel(swept parameter = value) gives that grid point's summary, and, indexed by the
+    swept value and the realisation id, exactly that grid point's rows of /realisations."""
+    with h5py.File(path, "r") as f, open_group(path, "/realisations") as ds:
+        rows = ds.set_index(member=["surface_summits_count", "realisation"])
+        for value in f["grid/values"][:, 0]:
+            g = grid_point_of(f, [value])
+            picked = rows.sel(surface_summits_count=value)
+            expected = f["realisations/grid_point"][()] == g
+            check(picked.dims.get("realisation") == int(expected.sum())
+                  and np.array_equal(picked["realisation"].values, f["realisations/realisation"][expected])
+                  and np.array_equal(picked["voltage_rms_v"].values, f["realisations/voltage_rms_v"][expected],
+                                     equal_nan=True),
+                  f"sweep.h5: /realisations .sel(surface_summits_count={value}) is not grid point {g}'s rows")
+    with h5py.File(path, "r") as f, open_group(path, "/summary/voltage_rms_v") as ds:
+        swept = [v for v in f["grid/values"][:, 0]]
+        check(sorted(swept) == [1.0, 2.0], f"sweep.h5: the grid is {swept}, not the study's [1, 2]")
+        for value in swept:
+            g = grid_point_of(f, [value])
+            picked = ds.sel(surface_summits_count=value)
+            for statistic in ("mean", "count", "std"):
+                check(np.array_equal(picked[statistic].values, f["summary/voltage_rms_v/" + statistic][g], equal_nan=True),
+                      f"sweep.h5: sel(surface_summits_count={value})[{statistic!r}] is not grid point {g}'s")
+
+
+def check_two_parameters_select(path):
+    """With two swept parameters, each is a coordinate of grid_point; indexed by both, .sel picks a point."""
+    names = ["surface_summits_count", "model_belt_velocity_m_per_s"]
+    with h5py.File(path, "r") as f, open_group(path, "/summary/voltage_rms_v") as ds:
+        check(all(n in ds.coords for n in names), f"sweep2.h5: {names} are not coordinates of /summary")
+        indexed = ds.set_index(grid_point=names)
+        for count in (1.0, 2.0):
+            for velocity in (10.0, 12.0):
+                g = grid_point_of(f, [count, velocity])
+                picked = indexed.sel(surface_summits_count=count, model_belt_velocity_m_per_s=velocity)
+                check(np.array_equal(picked["mean"].values, f["summary/voltage_rms_v/mean"][g], equal_nan=True),
+                      f"sweep2.h5: sel(count={count}, velocity={velocity}) is not grid point {g}'s")
+
 
 def device_study():
     """The known device of the inverse tests (tests/support/known_device.toml, shared with
@@ -258,8 +362,11 @@ def main():
             f.write(ENSEMBLE.format(surface=surface))
         with open(out("sweep.toml"), "w") as f:
             f.write(ENSEMBLE.format(surface=surface) + SWEEP)
+        with open(out("sweep2.toml"), "w") as f:
+            f.write(ENSEMBLE.format(surface=surface) + SWEEP_TWO_PARAMETERS)
         run(binary, "run", out("single.toml"), "-j", "2", "-o", out("single.h5"), cwd=work)
         run(binary, "run", out("sweep.toml"), "-j", "2", "-o", out("sweep.h5"), cwd=work)
+        run(binary, "run", out("sweep2.toml"), "-j", "2", "-o", out("sweep2.h5"), cwd=work)
         with open(out("device.toml"), "w") as f:
             f.write(device_study())
         run(binary, "calibrate", out("device.toml"), "-j", "2", "-o", out("bank.h5"), cwd=work)
@@ -271,7 +378,8 @@ def main():
         run(binary, "invert", out("record.csv"), "--known", out("device.toml"), "--bank", out("bank.h5"),
             "-o", out("inverse.h5"), cwd=work)
 
-        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "bank.h5",
+        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "sweep2.h5",
+                 "bank.h5",
                  "inverse.h5"]
         for name in files:
             check_every_group(out(name))
@@ -296,8 +404,8 @@ def main():
         expect_dims(r, "/asperity", "current", ("asperity", "time"))
         expect_dims(r, "/spectrum", "current", ("asperity", "frequency"))
         expect_dims(r, "/spectrum/lines", "frequency", ("line",))
-        expect_dims(r, "/spectrogram", "voltage", ("time", "frequency"))
-        expect_coordinate(r, "/spectrogram", "time", "/spectrogram/time")
+        expect_dims(r, "/spectrogram", "voltage", ("window_time", "frequency"))
+        expect_coordinate(r, "/spectrogram", "window_time", "/spectrogram/window_time")
         expect_coordinate(r, "/spectrogram", "frequency", "/spectrogram/frequency")
         expect_dims(out("random.h5"), "/surface/summits", "height_m", ("summit",))
         # A flagged run's circuit spans the leading samples of /time only: its own axis.
@@ -315,7 +423,7 @@ def main():
         s = out("spectrum.h5")
         expect_coordinate(s, "/spectrum", "frequency", "/spectrum/frequency")
         expect_dims(s, "/spectrum", "voltage", ("frequency",))
-        expect_dims(s, "/spectrogram", "voltage", ("time", "frequency"))
+        expect_dims(s, "/spectrogram", "voltage", ("window_time", "frequency"))
 
         p = out("surface.h5")
         expect_coordinate(p, "/realisations", "realisation", "/realisations/realisation")
@@ -326,21 +434,27 @@ def main():
         expect_dims(p, "/target/heights", "density", ("value",))
         expect_dims(p, "/load_separation", "total_load_n", ("separation_m",))
 
-        for name in ("single.h5", "sweep.h5"):
+        for name, grid_dimension in (("single.h5", "grid_point"), ("sweep.h5", "surface_summits_count"),
+                                     ("sweep2.h5", "grid_point")):
             e = out(name)
-            expect_coordinate(e, "/realisations", "realisation", "/realisations/realisation")
-            for variable in ("voltage_rms_v", "valid", "grid_point", "fft_ratio"):
-                expect_dims(e, "/realisations", variable, ("realisation",))
+            expect_coordinate(e, "/realisations", "member", "/realisations/member")
+            for variable in ("voltage_rms_v", "valid", "grid_point", "realisation", "fft_ratio"):
+                expect_dims(e, "/realisations", variable, ("member",))
             expect_dims(e, "/asperities", "natural_frequency_hz", ("asperity",))
-            expect_dims(e, "/summary/voltage_rms_v", "mean", ("grid_point",))
-            expect_dims(e, "/summary/pooled", "fft_ratio_low", ("grid_point",))
+            expect_dims(e, "/summary/voltage_rms_v", "mean", (grid_dimension,))
+            expect_dims(e, "/summary/pooled", "fft_ratio_low", (grid_dimension,))
+            check_every_dimension_has_a_coordinate(e)
+            check_members(e)
+            check_ragged_asperities(e)
+        check_one_parameter_selects(out("sweep.h5"))
+        check_two_parameters_select(out("sweep2.h5"))
         trace = "/traces/realisation_0"
         expect_coordinate(out("single.h5"), trace, "time", trace + "/time")
         expect_dims(out("single.h5"), trace, "voltage", ("time",))
         w = out("sweep.h5")
-        expect_dims(w, "/grid", "values", ("grid_point", "parameter"))
+        expect_dims(w, "/grid", "values", ("surface_summits_count", "parameter"))
         expect_coordinate(w, "/grid", "parameter", "/grid/parameter")
-        expect_dims(w, "/draws", "values", ("realisation", "parameter"))
+        expect_dims(w, "/draws", "values", ("member", "parameter"))
         expect_coordinate(w, "/draws", "parameter", "/draws/parameter")
         trace = "/traces/point_1/realisation_0"
         expect_coordinate(w, trace, "time", trace + "/time")

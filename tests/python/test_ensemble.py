@@ -32,8 +32,35 @@ def small_ensemble_text(realisations=4):
 TRACE_NAMES = {"time": "time_s", "voltage": "voltage_v", "charge": "charge_c", "measured_voltage": "measured_voltage_v"}
 
 
+def xarray_coordinate(ensemble, path):
+    """The coordinates the file adds for xarray (io/ensemble_coordinates.hpp), derived from
+    the module's records and grid: None for any other path."""
+    parts = path.split("/")
+    members = len(ensemble.realisations["realisation"])
+    offsets = np.asarray(ensemble.realisations["asperity_offset"])
+    derived = {"realisations/member": np.arange(members), "draws/member": np.arange(members),
+               "asperities/member": np.arange(members), "realisations/realisation_boundary": np.arange(members + 1),
+               "asperities/asperity": np.arange(offsets[-1]), "asperities/asperity_count": np.diff(offsets)}
+    if path in derived:
+        return derived[path]
+    grid = getattr(ensemble, "grid", None)
+    if parts[0] in ("grid", "summary") and parts[-1] == "grid_point":
+        return np.arange(len(grid["values"]) if grid else 1)  # without a sweep: one point
+    if parts[0] in ("grid", "summary", "realisations") and grid:
+        values = np.asarray(grid["values"], dtype=float).reshape(len(grid["values"]), -1)
+        swept = [name.replace(".", "_") for name in grid["parameter"]]
+        if parts[-1] in swept:
+            column = values[:, swept.index(parts[-1])]
+            # /realisations: each member's grid point's value.
+            return column[np.asarray(ensemble.realisations["grid_point"])] if parts[0] == "realisations" else column
+    return None
+
+
 def lookup(ensemble, path):
     """The module's value for a dataset path of the ensemble file."""
+    coordinate = xarray_coordinate(ensemble, path)
+    if coordinate is not None:
+        return coordinate
     parts = path.split("/")
     value = getattr(ensemble, parts[0])
     for key in parts[1:-1]:

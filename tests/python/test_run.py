@@ -47,7 +47,7 @@ RUN_FILE = {
     "spectrum/lines/amplitude": ("spectra", "lines", "amplitude_v"),
     "spectrum/lines/damping": ("spectra", "lines", "damping_per_s"),
     "spectrum/lines/phase": ("spectra", "lines", "phase_rad"),
-    "spectrogram/time": ("spectra", "spectrogram", "time_s"),
+    "spectrogram/window_time": ("spectra", "spectrogram", "time_s"),
     "spectrogram/frequency": ("spectra", "spectrogram", "frequency_hz"),
     "spectrogram/voltage": ("spectra", "spectrogram", "voltage_v"),
 }
