@@ -113,8 +113,9 @@ TEST(InverseAtoms, DerivativesMatchDifferences) {
     EXPECT_LT(relative_l2(analytic(v.d_lnn), central(np, nm, h)), 1e-4) << "k = " << a.stiffness_n_per_m;
     // An onset on a sample (t = 0) puts the pick-up's kink there: a one-sided derivative at
     // that sample, which no difference matches. Off the samples it is smooth.
-    if (a.onset_s > 0.0)
+    if (a.onset_s > 0.0) {
       EXPECT_LT(relative_l2(analytic(v.d_onset), central(tp, tm, ht)), 1e-4) << "k = " << a.stiffness_n_per_m;
+    }
   }
 }
 
