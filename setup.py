@@ -6,6 +6,9 @@ command line. Only the module's targets are built (no tests, no executable).
 Where CMake builds: build-python/ beside build/ (one level below the source like it, so
 ccache, with CCACHE_BASEDIR at or above the clone, reuses build/'s objects of the same
 sources), or $STENGMC_PYTHON_BUILD_DIR. Extra configure options: $STENGMC_CMAKE_ARGS.
+$STENGMC_PYTHON_CONFIGURED_BUILD_DIR names a build tree already configured with the module
+(the test suite's build/): it is not configured again, only its module target brought up to
+date, so the install test does not compile the library a third time.
 Compile jobs: $CMAKE_BUILD_PARALLEL_LEVEL (CMake's own variable), every core by default."""
 import os
 import re
@@ -39,7 +42,10 @@ class CMakeBuild(build_ext):
         if shutil.which("cmake") is None:
             sys.exit("setup.py: building stengmc needs CMake >= 3.25 (Debian: apt-get install cmake; "
                      "or bash scripts/setup.sh for every package the build needs)")
-        build_dir = Path(os.environ.get("STENGMC_PYTHON_BUILD_DIR", SOURCE / "build-python")).resolve()
+        configured = os.environ.get("STENGMC_PYTHON_CONFIGURED_BUILD_DIR")
+        build_dir = Path(configured or os.environ.get("STENGMC_PYTHON_BUILD_DIR", SOURCE / "build-python")).resolve()
+        if configured and not (build_dir / "CMakeCache.txt").is_file():
+            sys.exit(f"setup.py: STENGMC_PYTHON_CONFIGURED_BUILD_DIR={configured} holds no configured CMake build (no CMakeCache.txt)")
         configure = [
             "cmake", "-S", str(SOURCE), "-B", str(build_dir),
             "-DCMAKE_BUILD_TYPE=Release",
@@ -50,7 +56,8 @@ class CMakeBuild(build_ext):
             f"-DPython3_EXECUTABLE={sys.executable}",
             *shlex.split(os.environ.get("STENGMC_CMAKE_ARGS", "")),
         ]
-        subprocess.run(configure, check=True)
+        if not configured:
+            subprocess.run(configure, check=True)
         build = ["cmake", "--build", str(build_dir), "--target", "stengmc_python"]
         if "CMAKE_BUILD_PARALLEL_LEVEL" not in os.environ:
             build += ["-j", str(os.cpu_count() or 1)]
