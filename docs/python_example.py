@@ -34,6 +34,21 @@ print(ensemble)
 print(f"V_rms mean {v['mean'][0]:.4g} V, 95 % CI [{v['mean_low'][0]:.4g}, {v['mean_high'][0]:.4g}] ({v['mean_method'][0]})")
 print("FFT identifiable per realisation:", ensemble.realisations["fft_identifiable"])
 
+# %% A sweep from the command line in xarray: select by the swept parameters
+import subprocess
+import tempfile
+
+sweep_file = f"{tempfile.mkdtemp()}/quick.h5"
+subprocess.run(["build/src/stengmc", "run", "studies/ensembles/identifiability_quick.toml", "-o", sweep_file],
+               check=True, capture_output=True)
+groups = stengmc.open(sweep_file).to_xarray()
+rms = groups["summary/voltage_rms_v"].set_index(grid_point=["surface_summits_count", "surface_stiffness_sigma_log"])
+print(f"V_rms mean at 8 summits, sigma_log 0.5: {rms['mean'].sel(surface_summits_count=8, surface_stiffness_sigma_log=0.5).item():.4g} V")
+table = rms["mean"].unstack("grid_point")  # one dimension per swept parameter
+print("summits", "".join(f"{s:>10}" for s in table.surface_stiffness_sigma_log.values), " <- sigma_log; V_rms mean [V]")
+for summits in table.surface_summits_count.values:
+    print(f"{summits:7.0f}", "".join(f"{v:10.4g}" for v in table.sel(surface_summits_count=summits).values))
+
 # %% The inverse estimator on a measured record (here the shipped demo CSV)
 t, voltage = np.loadtxt("studies/inverse/demo_record.csv", delimiter=",", skiprows=1, unpack=True)
 estimate = stengmc.invert(voltage, known="studies/inverse/demo_device.toml", time_s=t)
