@@ -12,12 +12,9 @@
 #include <numeric>
 
 #include "core/hdf5_file.hpp"
-#include "ensemble/ensemble_runner.hpp"
 #include "ensemble/journal.hpp"
 #include "ensemble/realisation_record.hpp"
 #include "ensemble/shard.hpp"
-#include "ensemble/study_file.hpp"
-#include "ensemble/sweep.hpp"
 #include "support/cli_runner.hpp"
 #include "support/distributed_runs.hpp"
 
@@ -38,14 +35,15 @@ std::string run_shard(const std::string& study, int i, const ScratchDir& scratch
   return path;
 }
 
-//! The journal a run of `study` killed after finishing realisations `ids` leaves: those
-//! records (taken from shard files of the same study), under the identity the runner
-//! gives its journal.
+//! The journal a run of `study` (one grid point) killed after finishing realisations `ids`
+//! leaves: those records, taken from shard files of the same study. Its identity is the one
+//! the stengmc under test gives it: a single point's study hash is the study's, which the
+//! shard files carry (this test's own build may differ from that program's, e.g. in its
+//! git revision, so it does not hash the study itself); the description names the study
+//! file as the runner's does.
 void write_killed_journal(const std::string& path, const std::string& study_path, const std::vector<std::string>& shards,
                           const std::vector<std::uint64_t>& ids) {
-  const StudyFile study = read_study_file(study_path, std::nullopt);
-  const std::vector<GridPoint> grid = prepare_grid(study);
-  Journal journal(path, ensemble_journal_identity(grid.front().study));
+  Journal journal(path, {read_shard_file(shards.front()).study_identity, "stengmc (the test's), study " + study_path});
   for (const std::string& s : shards)
     for (const RealisationRecord& r : read_shard_file(s).records)
       if (std::find(ids.begin(), ids.end(), r.realisation) != ids.end()) journal.append(r);
