@@ -124,7 +124,8 @@ void merge(const MergeOptions& options) {
 void add_merge_command(CLI::App& app) {
   auto options = std::make_shared<MergeOptions>();
   CLI::App* command = app.add_subcommand(
-      "merge", "Merge the shard files of an ensemble (run --shard i/n, i = 0..n-1) into the output file one run writes");
+      "merge", "Merge the shard files of an ensemble (run --shard i/n, i = 0..n-1) into the output file one run writes "
+      "(--partial: what unfinished shards and journals hold)");
   command->add_option("shards", options->shards, "The shard files, all n of them, each once (with --partial: any shard files and journals of one run)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -97,8 +97,8 @@ void add_status_command(CLI::App& app) {
   auto options = std::make_shared<StatusOptions>();
   CLI::App* command = app.add_subcommand(
       "status",
-      "Show the progress in a journal (OUT.journal, OUT.point<g>.journal) or a shard file (run --shard i/n): the study, "
-      "grid point or shard, realisations finished of how many, the missing ids, damage; the file is only read");
+      "Show what a journal (OUT.journal, OUT.point<g>.journal) or shard file holds: study, grid point or shard, "
+      "realisations finished and missing (read only)");
   command->add_option("file", options->file, "The journal or shard file")->required()->check(CLI::ExistingFile);
   command->add_option("--study", options->study,
                       "The study file, if it is no longer where the run read it (it must be the same text)")
