@@ -5,11 +5,19 @@
 // run's and the statistics recomputed from the rows.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <set>
 
 #include "core/hdf5_file.hpp"
 #include "ensemble/journal.hpp"
@@ -17,6 +25,8 @@
 #include "ensemble/shard.hpp"
 #include "support/cli_runner.hpp"
 #include "support/distributed_runs.hpp"
+
+extern char** environ;
 
 namespace stengmc {
 namespace {
@@ -91,6 +101,73 @@ TEST(PartialResults, StatusOfSomethingElseIsAnInputErrorNamingTheFile) {
   const auto refused = run_cli("status " + study, scratch);
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_NE(refused.output.find(study + ": not a stengmc journal"), std::string::npos) << refused.output;
+}
+
+//! "a-b, c": the ids of 0..count-1 not in `present`, written out here rather than by the
+//! code under test.
+std::string missing_text(const std::set<std::uint64_t>& present, std::uint64_t count) {
+  std::string out;
+  for (std::uint64_t id = 0; id < count;) {
+    if (present.count(id)) {
+      ++id;
+      continue;
+    }
+    std::uint64_t last = id;
+    while (last + 1 < count && !present.count(last + 1)) ++last;
+    out += (out.empty() ? "" : ", ") + std::to_string(id) + (last > id ? "-" + std::to_string(last) : "");
+    id = last + 1;
+  }
+  return out;
+}
+
+//! A sweep run SIGKILLed by the test once its first point's journal holds a few records:
+//! status finds the point by the journal's hash (the runner's own, not made by the test)
+//! and lists exactly the ids the journal does not hold.
+TEST(PartialResults, StatusOfARealKilledSweepFindsItsGridPointAndMissingIds) {
+  ScratchDir scratch("partial-status-killed");
+  constexpr int MANY = 3000;  // far more than run before the kill
+  const std::string study = scratch.write("study.toml", distributed_study(MANY, testing::TWO_POINT_SWEEP));
+  const std::string out = scratch.file("killed.h5"), journal = out + ".point0.journal";
+  std::vector<std::string> args{STENGMC_BINARY, "run", study, "-j", "1", "-o", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, (out + ".log").c_str(), O_WRONLY | O_CREAT, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, (out + ".err").c_str(), O_WRONLY | O_CREAT, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  const auto held = [&] {
+    try {
+      return scan_journal_file(journal, "the journal", "").contents.records.size();
+    } catch (const std::exception&) {
+      return std::size_t{0};  // not there yet
+    }
+  };
+  while (std::chrono::steady_clock::now() < deadline && held() < 5) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  int wait_status = 0;
+  ::waitpid(pid, &wait_status, 0);
+  ASSERT_TRUE(WIFSIGNALED(wait_status)) << "the run ended before it was killed";
+
+  std::set<std::uint64_t> ids;
+  for (const RealisationRecord& r : scan_journal_file(journal, "the journal", "").contents.records) ids.insert(r.realisation);
+  ASSERT_GE(ids.size(), 5u);
+  const auto status = run_cli("status " + journal, scratch);
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_NE(status.output.find("grid point 1 of 2 (count = 2): " + std::to_string(ids.size()) + " of " +
+                               std::to_string(MANY) + " realisations finished"),
+            std::string::npos)
+      << status.output;
+  EXPECT_NE(status.output.find("missing: " + missing_text(ids, MANY) + "\n"), std::string::npos) << status.output;
+
+  // Grid point 2 has nothing yet: an ensemble file needs every point, so --partial refuses.
+  const auto refused = run_cli("merge --partial " + journal + " -o " + scratch.file("p.h5"), scratch);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("grid point 2 of 2"), std::string::npos) << refused.output;
 }
 
 //! The rows of `name` in `path`, by realisation id.
