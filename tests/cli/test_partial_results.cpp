@@ -93,6 +93,18 @@ TEST(PartialResults, StatusOfAKilledRunsJournalListsTheMissingIdsAndTheTornTail)
   EXPECT_NE(torn.output.find("torn: the last 37 bytes"), std::string::npos) << torn.output;
   EXPECT_NE(torn.output.find("missing: 1, 4, 6-8, 10\n"), std::string::npos) << torn.output;
   EXPECT_EQ(std::filesystem::file_size(journal), bytes + 37) << "status changed the journal";
+
+  // The study moved: the file is still readable (exit 0), the finished ids are listed, and
+  // --study gives the count again.
+  const std::string moved = scratch.file("moved.toml");
+  std::filesystem::rename(study, moved);
+  const auto unknown = run_cli("status " + journal, scratch);
+  ASSERT_EQ(unknown.exit_code, 0) << unknown.output;
+  EXPECT_NE(unknown.output.find("how many are expected is not known"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("finished ids: 0, 2-3, 5, 9\n"), std::string::npos) << unknown.output;
+  const auto told = run_cli("status " + journal + " --study " + moved, scratch);
+  ASSERT_EQ(told.exit_code, 0) << told.output;
+  EXPECT_NE(told.output.find("missing: 1, 4, 6-8, 10\n"), std::string::npos) << told.output;
 }
 
 TEST(PartialResults, StatusOfSomethingElseIsAnInputErrorNamingTheFile) {
