@@ -99,6 +99,7 @@ int run_command_line(int argc, char** argv) {
   stengmc::app::add_calibrate_command(app);
   stengmc::app::add_invert_command(app);
   stengmc::app::add_merge_command(app);
+  stengmc::app::add_status_command(app);
   stengmc::app::add_export_netlist_command(app);
   if (argc == 1) {  // bare `stengmc`: what it can do, not a usage error
     std::printf("%s", app.help().c_str());

@@ -156,6 +156,22 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
   return fnv1a64(git_revision(), h);
 }
 
+namespace {
+constexpr std::string_view JOURNAL_STUDY_PREFIX = "), study ";
+}
+
+JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook) {
+  const std::uint64_t identity =
+      hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
+  return {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
+                        std::string(JOURNAL_STUDY_PREFIX) + study.file};
+}
+
+std::string journal_study_file(const std::string& description) {
+  const auto at = description.find(JOURNAL_STUDY_PREFIX);
+  return at == std::string::npos ? std::string() : description.substr(at + JOURNAL_STUDY_PREFIX.size());
+}
+
 EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path, const EnsembleOptions& options,
                          const RealisationHook& hook) {
   if (!study.ensemble) throw InputError(study.file + ": the study has no [ensemble] table");
@@ -189,10 +205,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
     run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook, nullptr);
   } else {
     if (options.restart) discard_journal(journal_path);
-    const std::uint64_t identity =
-        hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
-    Journal journal(journal_path, {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
-                                                 "), study " + study.file});
+    Journal journal(journal_path, ensemble_journal_identity(study, hook));
     // A realisation refused by the work limits is run again: this run's limits may differ.
     for (const RealisationRecord& r : journal.recovered())
       if (r.realisation < settings.realisations && in_slice(r.realisation) &&

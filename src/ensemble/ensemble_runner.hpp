@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ensemble/journal.hpp"
 #include "ensemble/realisation_record.hpp"
 #include "ensemble/shard_spec.hpp"
 #include "ensemble/study_file.hpp"
@@ -67,11 +68,20 @@ struct EnsembleRun {
   //! In a distributed run (MPI), this rank only computed realisations for rank 0: it holds
   //! no records and writes nothing.
   bool worker = false;
+  //! Merged by `merge --partial` from an unfinished run: some of the requested are missing.
+  bool partial = false;
 };
 
 //! Everything that determines an ensemble's results, hashed: the study and surface texts,
 //! the program version and git revision. A journal written under another hash is refused.
 std::uint64_t ensemble_identity_hash(const Study& study);
+
+//! The identity of the journal of `study` (one grid point's study), as run_ensemble opens
+//! it: its hash (with the hook's identity) and "stengmc VERSION (git REV), study FILE".
+JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook = {});
+
+//! The study file named in the description of an ensemble journal, or "" when it names none.
+std::string journal_study_file(const std::string& description);
 
 //! The target rule looks at no fewer valid realisations than this: a CI from a handful
 //! can be narrow by chance (or zero-wide for a statistic that has not varied yet).

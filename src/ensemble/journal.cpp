@@ -227,6 +227,34 @@ Header parse_header(std::string_view file, const std::string& path, const std::s
   return header;
 }
 
+
+struct ScanEnd {
+  std::uint64_t end_of_good = 0;  //!< offset in the body just past the last good frame
+  std::uint64_t skipped = 0;      //!< damaged bytes between good frames, skipped
+};
+
+//! The records of a journal's `body`: every frame whose checksum holds, in file order. The
+//! scan resumes at the next offset where a whole frame with a matching checksum begins, so
+//! damage costs only the frames it touches. What follows the last good frame (from
+//! end_of_good on) is a torn append.
+ScanEnd scan_records(std::string_view body, const std::string& path, const std::string& advice,
+                     std::vector<RealisationRecord>& records) {
+  ScanEnd end;
+  std::uint64_t offset = 0;
+  while (offset < body.size()) {
+    if (!frame_at(body, offset)) {
+      const auto next = next_frame(body, offset + 1);
+      if (!next) break;
+      end.skipped += *next - offset;
+      offset = *next;
+    }
+    const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
+    records.push_back(decode_payload(body.substr(offset + LENGTH_BYTES, length), path, records.size(), advice));
+    offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
+    end.end_of_good = offset;
+  }
+  return end;
+}
 }  // namespace
 
 std::string encode_record_frame(const RealisationRecord& record, const std::string& path) {
@@ -240,7 +268,10 @@ RealisationRecord decode_record_frame(std::string_view frame, const std::string&
                         "Run every process of the job with the same stengmc.");
 }
 
-JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice) {
+namespace {
+
+//! The whole of the journal file at `path`, a regular file starting with the magic.
+std::string read_whole_journal(const std::string& path, const std::string& what, const std::string& advice) {
   // A FIFO would block the read for ever, a device feed it without end: a regular file only.
   check_input_file(path, what);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -258,6 +289,25 @@ JournalContents read_journal_file(const std::string& path, const std::string& wh
     throw;
   }
   ::close(fd);
+  return file;
+}
+
+}  // namespace
+
+JournalScan scan_journal_file(const std::string& path, const std::string& what, const std::string& advice) {
+  const std::string file = read_whole_journal(path, what, advice);
+  Header header = parse_header(file, path, advice);
+  JournalScan scan;
+  scan.contents = {header.study_hash, std::move(header.description), {}};
+  const std::string_view body = std::string_view(file).substr(header.body_start);
+  const ScanEnd end = scan_records(body, path, advice, scan.contents.records);
+  scan.skipped_bytes = end.skipped;
+  scan.torn_bytes = body.size() - end.end_of_good;
+  return scan;
+}
+
+JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice) {
+  const std::string file = read_whole_journal(path, what, advice);
   Header header = parse_header(file, path, advice);
   JournalContents contents{header.study_hash, std::move(header.description), {}};
   const std::string_view body = std::string_view(file).substr(header.body_start);
@@ -383,24 +433,12 @@ void Journal::load(const JournalIdentity& identity) {
                      "realisations cannot be reused. " + how_to_start_afresh(path_));
 
   // Records. Every frame whose checksum holds is kept; damage (a bad disk block, a stray
-  // write) costs only the frames it touches: the scan resumes at the next offset where a
-  // whole frame with a matching checksum begins. Whatever follows the last good frame is a
-  // torn append (a kill mid-write) and is cut off, so appends continue after a whole record.
+  // write) costs only the frames it touches (scan_records). Whatever follows the last good
+  // frame is a torn append (a kill mid-write) and is cut off, so appends continue after a
+  // whole record.
   const std::uint64_t start = header.body_start;
   const std::string_view body = std::string_view(file).substr(start);
-  std::uint64_t offset = 0, end_of_good = 0;
-  while (offset < body.size()) {
-    if (!frame_at(body, offset)) {
-      const auto next = next_frame(body, offset + 1);
-      if (!next) break;
-      offset = *next;
-    }
-    const std::uint64_t length = little_endian(body.substr(offset, LENGTH_BYTES));
-    recovered_.push_back(
-        decode_payload(body.substr(offset + LENGTH_BYTES, length), path_, recovered_.size(), how_to_start_afresh(path_)));
-    offset += LENGTH_BYTES + length + CHECKSUM_BYTES;
-    end_of_good = offset;
-  }
+  const std::uint64_t end_of_good = scan_records(body, path_, how_to_start_afresh(path_), recovered_).end_of_good;
   // Cut only after every check passed, so a refused journal is left as it was.
   const std::uint64_t end = start + end_of_good;
   if (end < file_size && (::ftruncate(fd_, static_cast<off_t>(end)) != 0 || ::fsync(fd_) != 0))

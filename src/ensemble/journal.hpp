@@ -77,6 +77,19 @@ struct JournalContents {
 //! by write_journal_file is never torn, so damage there means the file cannot be trusted.
 JournalContents read_journal_file(const std::string& path, const std::string& what, const std::string& advice);
 
+//! A journal read as the resume would read it, but read only (nothing cut, nothing locked:
+//! a running job may be appending): what `stengmc status` shows.
+struct JournalScan {
+  JournalContents contents;
+  std::uint64_t skipped_bytes = 0;  //!< damaged bytes between intact records, skipped
+  std::uint64_t torn_bytes = 0;     //!< past the last intact record: a torn append, cut off on resume
+};
+
+//! Reads the journal at `path` (a regular file; `what` names it) keeping every record whose
+//! checksum holds, like a resume. InputError naming the file when it is not a journal, its
+//! header is damaged or a record has another record format (then `advice`).
+JournalScan scan_journal_file(const std::string& path, const std::string& what, const std::string& advice);
+
 //! Writes a complete journal at `path` in one go (header and every record, under a
 //! temporary name, fsync'ed, then renamed into place): a reader sees all of it or nothing.
 void write_journal_file(const std::string& path, const JournalIdentity& identity,

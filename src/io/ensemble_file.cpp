@@ -1,5 +1,6 @@
 #include "io/ensemble_file.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -115,6 +116,13 @@ void write_ensemble_file(const std::string& path, const StudyFile& base, const s
   file.attribute("/", "target_half_width", e.target_half_width);
   const auto& only = grid.front().run.only;
   file.attribute("/", "only_realisation", static_cast<std::int64_t>(only ? static_cast<std::int64_t>(*only) : -1));
+  // Only a file merged from an unfinished run carries these (merge --partial): every other
+  // file keeps the attributes it always had.
+  if (std::any_of(grid.begin(), grid.end(), [](const GridPoint& p) { return p.run.partial; })) {
+    file.attribute("/", "partial", std::int64_t{1});
+    file.attribute("/", "realisations_expected", static_cast<std::int64_t>(e.realisations * grid.size()));
+    file.attribute("/", "realisations_present", static_cast<std::int64_t>(run));
+  }
   write_grid(file, base, grid, axes);
   write_realisations(file, grid, axes, !e.draws.empty());
   write_draws(file, base, grid);

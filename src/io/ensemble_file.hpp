@@ -20,7 +20,9 @@
 //!   root attributes: provenance (input_text, surface_text, seed, version, git revision),
 //!                   title, realisations_requested, realisations_run, valid_realisations,
 //!                   stopped_at_target, target_statistic, target_half_width,
-//!                   only_realisation (the id run by --only, else -1)
+//!                   only_realisation (the id run by --only, else -1); merge --partial only:
+//!                   partial (1), realisations_expected (grid points x realisations),
+//!                   realisations_present
 //!   coordinates for xarray (io/ensemble_coordinates.hpp): member, the swept values,
 //!                   /asperities/asperity_count (CF ragged-array count), index coordinates
 //! Nothing in the datasets depends on the number of threads or on interruptions.

@@ -49,6 +49,8 @@ COMMANDS = {
     "./build/src/stengmc run studies/ensembles/identifiability_quick.toml --shard 0/2 -o s0.h5": RUN,
     "./build/src/stengmc run studies/ensembles/identifiability_quick.toml --shard 1/2 -o s1.h5": RUN,
     "./build/src/stengmc merge s0.h5 s1.h5 -o quick.h5": RUN,
+    "./build/src/stengmc status s0.h5": RUN,
+    "./build/src/stengmc merge --partial s0.h5 -o quick_half.h5": RUN,
     "./build/src/stengmc calibrate studies/inverse/device_vb10.toml":
         "2000 simulated records (~3 min); InverseDemo.CalibrateInvertAndRender runs calibrate and invert on the demo device",
     "./build/src/stengmc invert measured.csv --known studies/inverse/device_vb10.toml --out inverse.h5 --figures": USER_DATA,
