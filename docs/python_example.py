@@ -49,6 +49,19 @@ print("summits", "".join(f"{s:>10}" for s in table.surface_stiffness_sigma_log.v
 for summits in table.surface_summits_count.values:
     print(f"{summits:7.0f}", "".join(f"{v:10.4g}" for v in table.sel(surface_summits_count=summits).values))
 
+import matplotlib
+
+matplotlib.use("Agg")  # a notebook shows the figure inline instead
+import matplotlib.pyplot as plt
+
+figure, axes = plt.subplots()
+for sigma_log in table.surface_stiffness_sigma_log.values:
+    table.sel(surface_stiffness_sigma_log=sigma_log).plot(ax=axes, marker="o", label=f"sigma_log {sigma_log}")
+axes.set(xscale="log", yscale="log", xlabel="summits in contact", ylabel="V_rms mean [V]")
+axes.legend()
+figure.savefig(f"{tempfile.mkdtemp()}/vrms_vs_count.png")
+print("V_rms against the swept count:", len(axes.lines), "curves of", len(axes.lines[0].get_xdata()), "points")
+
 # %% The inverse estimator on a measured record (here the shipped demo CSV)
 t, voltage = np.loadtxt("studies/inverse/demo_record.csv", delimiter=",", skiprows=1, unpack=True)
 estimate = stengmc.invert(voltage, known="studies/inverse/demo_device.toml", time_s=t)
