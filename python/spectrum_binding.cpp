@@ -18,16 +18,6 @@ namespace stengmc::python {
 
 namespace {
 
-SpectrumSettings settings_from_text(const std::string& text, const std::string& name) {
-  auto document = TomlDocument::from_string(text, name);
-  TomlTable root = document->root();
-  auto table = root.table("spectrum");
-  if (!table) root.fail("spectrum", "is missing");
-  SpectrumSettings settings = read_spectrum_settings(*table);
-  document->reject_unknown_keys("spectrum");
-  return settings;
-}
-
 py::dict spectrum(const py::array_t<double, py::array::forcecast>& voltage_v, double sample_rate_hz,
                   const std::string& settings_text, const std::string& name) {
   if (!(std::isfinite(sample_rate_hz) && sample_rate_hz > 0.0))
@@ -36,7 +26,7 @@ py::dict spectrum(const py::array_t<double, py::array::forcecast>& voltage_v, do
   SpectralResult result;
   {
     py::gil_scoped_release release;
-    const SpectrumSettings settings = settings_from_text(settings_text, name);
+    const SpectrumSettings settings = read_spectrum_table(*TomlDocument::from_string(settings_text, name));
     std::vector<double> times(voltage.size());
     for (std::size_t i = 0; i < times.size(); ++i) times[i] = static_cast<double>(i) / sample_rate_hz;
     SpectralInput input;

@@ -7,8 +7,10 @@ import numpy as np
 from .output_file import OutputFile, _h5py, _text
 from .results import Run
 
-# Run file dataset -> where Run keeps it (attribute, then keys of nested dicts).
-_DATASETS = {
+# Run file dataset -> where Run keeps it (attribute, then keys of nested dicts). The one
+# statement of that correspondence: tests/python/test_run.py checks it, dataset by dataset,
+# against a run file and study.run().
+RUN_FILE_DATASETS = {
     "time": ("time_s",),
     "circuit/voltage": ("voltage_v",),
     "circuit/charge": ("charge_c",),
@@ -48,14 +50,17 @@ _DATASETS = {
     "spectrum/lines/amplitude": ("spectra", "lines", "amplitude_v"),
     "spectrum/lines/damping": ("spectra", "lines", "damping_per_s"),
     "spectrum/lines/phase": ("spectra", "lines", "phase_rad"),
-    "spectrogram/time": ("spectra", "spectrogram", "time_s"),
+    "spectrogram/window_time": ("spectra", "spectrogram", "time_s"),
     "spectrogram/frequency": ("spectra", "spectrogram", "frequency_hz"),
     "spectrogram/voltage": ("spectra", "spectrogram", "voltage_v"),
 }
 for _method in ("fft", "high_resolution"):
     for _name, _ours in (("identified", "identified"), ("matched_line", "matched_line"),
                          ("frequency_error", "frequency_error_hz"), ("amplitude", "amplitude_v")):
-        _DATASETS[f"spectrum/identifiability/{_method}/{_name}"] = ("spectra", "identifiability", _method, _ours)
+        RUN_FILE_DATASETS[f"spectrum/identifiability/{_method}/{_name}"] = ("spectra", "identifiability", _method, _ours)
+
+# Files written before a dataset was renamed: its old name.
+_OLDER_NAMES = {"spectrogram/window_time": "spectrogram/time"}
 
 
 def _put(fields, path, value):
@@ -82,9 +87,10 @@ class RunFile(Run, OutputFile):
         h5py = _h5py()
         fields = {"asperities": {}, "traces": {}, "events": {}}
         with h5py.File(self.path, "r") as f:
-            for dataset, where in _DATASETS.items():
-                if dataset in f:
-                    _put(fields, where, _values(f[dataset]))
+            for dataset, where in RUN_FILE_DATASETS.items():
+                found = dataset if dataset in f else _OLDER_NAMES.get(dataset)
+                if found is not None and found in f:
+                    _put(fields, where, _values(f[found]))
             if "spectra" in fields:  # resolution_hz, mean_v, ... and the identifiability counts are attributes
                 fields["spectra"].update({k: _text(v) for k, v in f["spectrum"].attrs.items()})
                 for method, ours in fields["spectra"].get("identifiability", {}).items():

@@ -36,14 +36,8 @@ struct SpectrumOptions {
 //! The [spectrum] table of a study file, or the defaults.
 SpectrumSettings settings_from(const std::string& file) {
   if (file.empty()) return {};
-  auto document = TomlDocument::from_file(file);
-  TomlTable root = document->root();
-  auto table = root.table("spectrum");
-  if (!table) root.fail("spectrum", "is missing: --settings needs a file with a [spectrum] table");
-  SpectrumSettings settings = read_spectrum_settings(*table);
   // Only [spectrum] is this command's business; the rest of a study file is not checked.
-  document->reject_unknown_keys("spectrum");
-  return settings;
+  return read_spectrum_table(*TomlDocument::from_file(file), ": --settings needs a file with a [spectrum] table");
 }
 
 void run(const SpectrumOptions& options) {

@@ -48,4 +48,18 @@ SpectrumSettings read_spectrum_settings(TomlTable& table) {
   return s;
 }
 
+SpectrumSettings read_spectrum_table(TomlDocument& document, std::string_view when_missing) {
+  TomlTable root = document.root();
+  auto table = root.table("spectrum");
+  if (!table) {
+    std::string what = "is missing";
+    what.append(when_missing);
+    root.fail("spectrum", what);
+  }
+  SpectrumSettings settings = read_spectrum_settings(*table);
+  // Only [spectrum] is read here; whatever else the document holds is its owner's business.
+  document.reject_unknown_keys("spectrum");
+  return settings;
+}
+
 }  // namespace stengmc

@@ -2,6 +2,7 @@
 //! The `[spectrum]` section of a study: what spectral analysis a run does (README).
 #include <cstddef>
 #include <optional>
+#include <string_view>
 
 #include "core/toml_reader.hpp"
 #include "spectral/esprit.hpp"
@@ -33,5 +34,10 @@ struct SpectrumSettings {
 
 //! Reads `[spectrum]` (and `[spectrum.spectrogram]`), validating every key.
 SpectrumSettings read_spectrum_settings(TomlTable& table);
+
+//! The `[spectrum]` table of `document` read alone (a settings file, or the keyword arguments
+//! of the Python module): every key of it checked, the rest of the document ignored. Without
+//! one, an InputError at `spectrum` that says "is missing" followed by `when_missing`.
+SpectrumSettings read_spectrum_table(TomlDocument& document, std::string_view when_missing = "");
 
 }  // namespace stengmc

@@ -126,7 +126,9 @@ std::string missing_text(const std::set<std::uint64_t>& present, std::uint64_t c
     }
     std::uint64_t last = id;
     while (last + 1 < count && !present.count(last + 1)) ++last;
-    out += (out.empty() ? "" : ", ") + std::to_string(id) + (last > id ? "-" + std::to_string(last) : "");
+    if (!out.empty()) out += ", ";
+    out += std::to_string(id);
+    if (last > id) out.append("-").append(std::to_string(last));
     id = last + 1;
   }
   return out;
@@ -231,8 +233,9 @@ TEST(PartialResults, MergePartialOfTwoOfThreeShardsHoldsTheirRealisationsAsTheWh
     ASSERT_FALSE(kept.empty());
     EXPECT_EQ(partial.vector(summary + "count")[0], static_cast<double>(kept.size())) << name;
     const double mean = std::accumulate(kept.begin(), kept.end(), 0.0) / static_cast<double>(kept.size());
-    if (std::isfinite(mean))
+    if (std::isfinite(mean)) {
       EXPECT_NEAR(partial.vector(summary + "mean")[0], mean, 1e-12 * std::max(1.0, std::abs(mean)) + 1e-300) << name;
+    }
     EXPECT_EQ(partial.vector(summary + "min")[0], *std::min_element(kept.begin(), kept.end())) << name;
     EXPECT_EQ(partial.vector(summary + "max")[0], *std::max_element(kept.begin(), kept.end())) << name;
   }

@@ -28,6 +28,7 @@ def assert_same(ours, theirs, what):
     ("studies/paper/fig2_k155.toml", 0),      # Model 1, traces with x0
     ("studies/surfaces/gw_vb10.toml", 3),     # a random surface's realisation 3, [spectrum]
     ("studies/inverse/demo_record.toml", 0),  # [noise]: measured_voltage_v
+    ("studies/paper/fig6_vb10_l50.toml", 0),  # a spectrogram (/spectrogram/window_time)
 ])
 def test_a_run_file_opens_as_the_run_the_module_computes(stengmc, tmp_path, study, realisation):
     out = tmp_path / "run.h5"

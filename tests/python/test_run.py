@@ -3,58 +3,14 @@ run file (but the surface's population), read back with h5py, equals the module'
 array value for value (one library, the same study text, the same seed: nothing may
 differ), and the module returns nothing the file lacks."""
 import pytest
+from stengmc.run_file import RUN_FILE_DATASETS as RUN_FILE
 
 from conftest import assert_bitwise, read_datasets, run_cli, source
 
-# The run file's datasets (README: output files) and where the module puts each.
-RUN_FILE = {
-    "time": ("time_s",),
-    "circuit/voltage": ("voltage_v",),
-    "circuit/charge": ("charge_c",),
-    "circuit/measured_voltage": ("measured_voltage_v",),
-    "asperity/k": ("asperities", "stiffness_n_per_m"),
-    "asperity/m": ("asperities", "mass_kg"),
-    "asperity/N": ("asperities", "normal_load_n"),
-    "asperity/h": ("asperities", "height_m"),
-    "asperity/phi": ("asperities", "drive_phase_rad"),
-    "asperity/sigma": ("asperities", "charge_density_c_per_m2"),
-    "asperity/d0": ("asperities", "effective_thickness_m"),
-    "asperity/w": ("asperities", "width_m"),
-    "asperity/l": ("asperities", "length_m"),
-    "asperity/natural_frequency": ("asperities", "natural_frequency_hz"),
-    "asperity/slip_fraction": ("asperities", "slip_fraction"),
-    "asperity/max_x_over_l": ("asperities", "max_x_over_l"),
-    "asperity/rms_velocity": ("asperities", "rms_velocity_m_per_s"),
-    "asperity/solver_steps": ("asperities", "solver_steps"),
-    "asperity/x": ("traces", "x_m"),
-    "asperity/v": ("traces", "v_m_per_s"),
-    "asperity/friction": ("traces", "friction_n"),
-    "asperity/current": ("traces", "current_a"),
-    "asperity/charge": ("traces", "charge_c"),
-    "asperity/x0": ("traces", "x0_m"),
-    "events/time": ("events", "time_s"),
-    "events/asperity": ("events", "asperity"),
-    "events/kind": ("events", "kind"),
-    "spectrum/frequency": ("spectra", "frequency_hz"),
-    "spectrum/voltage": ("spectra", "voltage_v"),
-    "spectrum/current": ("spectra", "current_a"),
-    "spectrum/expected_frequency": ("spectra", "expected_frequency_hz"),
-    "spectrum/sliding": ("spectra", "sliding"),
-    "spectrum/peaks/frequency": ("spectra", "peaks", "frequency_hz"),
-    "spectrum/peaks/amplitude": ("spectra", "peaks", "amplitude_v"),
-    "spectrum/peaks/prominence": ("spectra", "peaks", "prominence_v"),
-    "spectrum/lines/frequency": ("spectra", "lines", "frequency_hz"),
-    "spectrum/lines/amplitude": ("spectra", "lines", "amplitude_v"),
-    "spectrum/lines/damping": ("spectra", "lines", "damping_per_s"),
-    "spectrum/lines/phase": ("spectra", "lines", "phase_rad"),
-    "spectrogram/window_time": ("spectra", "spectrogram", "time_s"),
-    "spectrogram/frequency": ("spectra", "spectrogram", "frequency_hz"),
-    "spectrogram/voltage": ("spectra", "spectrogram", "voltage_v"),
-}
-for method in ("fft", "high_resolution"):
-    for name, ours in (("identified", "identified"), ("matched_line", "matched_line"),
-                       ("frequency_error", "frequency_error_hz"), ("amplitude", "amplitude_v")):
-        RUN_FILE[f"spectrum/identifiability/{method}/{name}"] = ("spectra", "identifiability", method, ours)
+# RUN_FILE: the run file's datasets (README: output files) and where the module puts each: the
+# module's own table (stengmc.open reads files with it), checked here in both directions
+# against a real run file: every dataset the file has must be in it and equal, bitwise, the
+# module's value where it says.
 
 
 def module_value(run, path):
