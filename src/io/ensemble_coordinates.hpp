@@ -49,8 +49,10 @@ EnsembleAxes ensemble_axes(const EnsembleSettings& settings, const std::vector<G
 //! describe_output with the ensemble's dimension names, and the coordinates written below.
 Hdf5Writer::Describer describe_ensemble_output(const EnsembleAxes& axes);
 
-//! The grid's coordinates in `group` (/grid or a /summary group), and the `coordinates`
-//! attribute its variables need with several swept parameters (`variables`: those written).
+//! The grid's coordinates in `group` (/grid or a /summary group): a product grid's axes
+//! (each parameter's values), else each parameter per grid point and the `coordinates`
+//! attribute naming them on `variables` (those written in the group); the index grid_point
+//! where the group is over it.
 void write_grid_coordinates(Hdf5Writer& f, const std::string& group, const EnsembleAxes& axes,
                             const std::vector<GridPoint>& grid, const std::vector<std::string>& variables);
 
