@@ -42,9 +42,8 @@ sweep_file = f"{tempfile.mkdtemp()}/quick.h5"
 subprocess.run(["build/src/stengmc", "run", "studies/ensembles/identifiability_quick.toml", "-o", sweep_file],
                check=True, capture_output=True)
 groups = stengmc.open(sweep_file).to_xarray()
-rms = groups["summary/voltage_rms_v"].set_index(grid_point=["surface_summits_count", "surface_stiffness_sigma_log"])
-print(f"V_rms mean at 8 summits, sigma_log 0.5: {rms['mean'].sel(surface_summits_count=8, surface_stiffness_sigma_log=0.5).item():.4g} V")
-table = rms["mean"].unstack("grid_point")  # one dimension per swept parameter
+table = groups["summary/voltage_rms_v"]["mean"]  # one dimension per swept parameter
+print(f"V_rms mean at 8 summits, sigma_log 0.5: {table.sel(surface_summits_count=8, surface_stiffness_sigma_log=0.5).item():.4g} V")
 print("summits", "".join(f"{s:>10}" for s in table.surface_stiffness_sigma_log.values), " <- sigma_log; V_rms mean [V]")
 for summits in table.surface_summits_count.values:
     print(f"{summits:7.0f}", "".join(f"{v:10.4g}" for v in table.sel(surface_summits_count=summits).values))

@@ -124,7 +124,9 @@ class Ensemble:
         value or the grid point no valid realisation. known False: low/high are the file's
         stand-ins, not a trustworthy interval (too few realisations; ensemble_statistics.hpp)."""
         def get(suffix):
-            values = array(self.f, f"{group}/{name}{suffix}").astype(float)
+            # A product grid's statistics have one axis per swept parameter, the first
+            # slowest: flattened they are in grid-point order again.
+            values = array(self.f, f"{group}/{name}{suffix}").astype(float).ravel()
             return values if values.size == self.G else np.full(self.G, np.nan)
 
         counts = self.valid_per_point()

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdio>
+#include <cstdint>
+#include <numeric>
 #include <map>
 #include <memory>
 #include <set>
@@ -192,21 +193,37 @@ class ScaleAttacher {
       return scale_for(group, spec.substr(bar + 1), length);
     }
     if (!found.empty()) return found;
-    const std::string made = joined(group, name);
+    return make_index(joined(group, name), name, length);
+  }
+
+  //! An index coordinate `name` at `made`: 0 .. length-1 (int64), units "1" and a long_name.
+  std::string make_index(const std::string& made, const std::string& name, hsize_t length) {
     const hsize_t dims[1] = {length};
     const Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose);
-    // netCDF-C's pure dimensions are 32-bit floats never written (no storage allocated).
-    const hid_t scale = H5Dcreate2(file_, made.c_str(), H5T_IEEE_F32BE, space.get(), H5P_DEFAULT,
+    const hid_t scale = H5Dcreate2(file_, made.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT,
                                    untimed_dataset().getId(), H5P_DEFAULT);
-    if (scale < 0) fail("cannot create dimension " + made);
+    if (scale < 0) fail("cannot create the index coordinate " + made);
     open_.emplace(made, std::make_unique<Handle>(scale, H5Dclose));
     written_[made].extent = {length};
-    char marker[96];
-    std::snprintf(marker, sizeof marker, "This is a netCDF dimension but not a netCDF variable.%10llu",
-                  static_cast<unsigned long long>(length));
-    if (H5DSset_scale(scale, marker) < 0) fail("cannot make " + made + " a dimension scale");
+    std::vector<std::int64_t> index(length);
+    std::iota(index.begin(), index.end(), std::int64_t{0});
+    if (length > 0 && H5Dwrite(scale, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, index.data()) < 0)
+      fail("cannot write the index coordinate " + made);
+    write_text(scale, made, "units", "1");
+    write_text(scale, made, "long_name", INDEX_LONG_NAME + name);
+    if (H5DSset_scale(scale, name.c_str()) < 0) fail("cannot make " + made + " a dimension scale");
     scales_.insert(made);
     return made;
+  }
+
+  //! A scalar text attribute (variable-length, as the writer's own).
+  void write_text(hid_t object, const std::string& path, const char* name, const std::string& value) {
+    const Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+    const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    if (H5Tset_size(type.get(), H5T_VARIABLE) < 0) fail("cannot make a text type");
+    const Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    const char* text = value.c_str();
+    if (attribute.get() < 0 || H5Awrite(attribute.get(), type.get(), &text) < 0) fail("cannot write " + path + "@" + name);
   }
 
   //! Makes the dataset at `path` a scale named after itself, once.

@@ -20,6 +20,10 @@ struct DatasetDescription {
   //! CF `comment` ("": none): what the unit cannot say, or, for a dataset with no single
   //! unit (units ""), the unit of each of its parts.
   std::string comment = {};
+  //! The extent of a flat array written under this description, outermost first (an
+  //! ensemble's statistics over a product grid: one axis per swept parameter); empty: the
+  //! array's own. Its product must be the array's length.
+  std::vector<std::size_t> shape = {};
 };
 
 //! A dataset of the file and its description.
@@ -38,19 +42,24 @@ struct WrittenDataset {
 //! Every dataset of a file, by path.
 using WrittenDatasets = std::map<std::string, WrittenDataset>;
 
+//! The long_name of an index coordinate made for a dimension, before the dimension's name
+//! (readers that compare a file with its source tell these apart by it).
+inline constexpr const char* INDEX_LONG_NAME = "index along dimension ";
+
 //! Attaches the axes of every dataset to dimension scales. netCDF's scoping rule finds
 //! the scale of dimension `d` for a dataset in group G: the dataset named `d` in G or in
 //! its nearest ancestor group, which must itself be described as a coordinate (1-D, its
-//! one dimension named `d`, the same length) and is made a scale; where there is none, a
-//! "pure" dimension is made in G: a 1-D dataset `d` with no values whose NAME says "This
-//! is a netCDF dimension but not a netCDF variable." (netCDF-C's marker, which h5netcdf
-//! and netCDF-C read as a dimension without a variable). A name "a|b" is dimension a
+//! one dimension named `d`, the same length) and is made a scale; where there is none, an
+//! index coordinate is made in G: a 1-D 64-bit integer dataset `d` holding 0 .. length-1,
+//! units "1", long_name INDEX_LONG_NAME + `d`, so every dimension has a coordinate
+//! (issue 25; netCDF's "pure" dimensions, a scale with no values, are no longer made:
+//! xarray shows them without labels). A name "a|b" is dimension a
 //! where a's scale has the axis's length, else b: the circuit's traces of a run whose
 //! circuit stopped early span only the leading samples of /time. No written value is
 //! touched.
 //! Throws Error when a description contradicts the file (a wrong axis count or length, a
 //! dimension name taken by a dataset that is not its coordinate).
-//! `written` names every dataset of the file with its extent (the pure dimensions made here
+//! `written` names every dataset of the file with its extent (the index coordinates made here
 //! are added): the file is not searched, a dataset the writer holds open is used as it is,
 //! and any other is opened once.
 void attach_dimension_scales(hid_t file, const std::string& file_name, const std::vector<DescribedDataset>& datasets,

@@ -161,6 +161,21 @@ H5::DSetCreatPropList column_layout(hsize_t size) {
   return layout;
 }
 
+//! The extent of `size` values written under `shape` (empty: 1-D), which must hold them all.
+std::vector<hsize_t> extent_of(const std::string& path, std::size_t size, const std::vector<std::size_t>& shape) {
+  if (shape.empty()) return {size};
+  std::size_t product = 1;
+  for (const std::size_t n : shape) product *= n;
+  if (product != size)
+    throw Error(path + ": " + std::to_string(size) + " values do not fill its shape of " + std::to_string(product));
+  return {shape.begin(), shape.end()};
+}
+
+//! A 1-D array's compressed layout; an N-D one (an ensemble's statistics, G values) stays contiguous.
+H5::DSetCreatPropList layout_of(const std::vector<hsize_t>& extent) {
+  return extent.size() == 1 ? column_layout(extent.front()) : untimed_dataset();
+}
+
 }  // namespace
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units) {
@@ -168,11 +183,11 @@ void Hdf5Writer::write(const std::string& path, std::span<const double> values, 
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values, std::string_view units,
-                       std::optional<std::string_view> long_name) {
+                       std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape) {
   check_finite(path, values);
+  const std::vector<hsize_t> extent = extent_of(path, values.size(), shape);
   guarded("cannot write " + path, [&] {
-    H5::DataSet& dataset =
-        create_dataset(path, H5::PredType::NATIVE_DOUBLE, {values.size()}, column_layout(values.size()));
+    H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_DOUBLE, extent, layout_of(extent));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_DOUBLE);
     annotate(dataset, units, long_name);
   });
@@ -204,10 +219,10 @@ void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> va
 }
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
-                       std::optional<std::string_view> long_name) {
+                       std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape) {
+  const std::vector<hsize_t> extent = extent_of(path, values.size(), shape);
   guarded("cannot write " + path, [&] {
-    H5::DataSet& dataset =
-        create_dataset(path, H5::PredType::NATIVE_INT64, {values.size()}, column_layout(values.size()));
+    H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_INT64, extent, layout_of(extent));
     if (!values.empty()) dataset.write(values.data(), H5::PredType::NATIVE_INT64);
     annotate(dataset, units, long_name);
   });
@@ -218,12 +233,13 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& 
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values, std::string_view units,
-                       std::optional<std::string_view> long_name) {
+                       std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape) {
+  const std::vector<hsize_t> extent = extent_of(path, values.size(), shape);
   guarded("cannot write " + path, [&] {
     std::vector<const char*> pointers;
     pointers.reserve(values.size());
     for (const auto& v : values) pointers.push_back(v.c_str());
-    H5::DataSet& dataset = create_dataset(path, string_type(), {values.size()}, untimed_dataset());
+    H5::DataSet& dataset = create_dataset(path, string_type(), extent, untimed_dataset());
     if (!values.empty()) dataset.write(pointers.data(), string_type(), H5::DataSpace::ALL, H5::DataSpace::ALL,
                                        conversion_buffer(values.size(), sizeof(hvl_t)));
     annotate(dataset, units, long_name);
@@ -240,7 +256,7 @@ DatasetDescription Hdf5Writer::described(const std::string& path, std::optional<
 
 void Hdf5Writer::write(const std::string& path, std::span<const double> values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units, d.long_name);
+  write(path, values, d.units, d.long_name, d.shape);
   comment(path, d);
 }
 
@@ -252,19 +268,19 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
 
 void Hdf5Writer::write(const std::string& path, std::span<const std::int64_t> values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units, d.long_name);
+  write(path, values, d.units, d.long_name, d.shape);
   comment(path, d);
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::string>& values) {
   const DatasetDescription d = described(path);
-  write(path, values, d.units, d.long_name);
+  write(path, values, d.units, d.long_name, d.shape);
   comment(path, d);
 }
 
 void Hdf5Writer::write_with_units(const std::string& path, std::span<const double> values, std::string_view units) {
   const DatasetDescription d = described(path, units);
-  write(path, values, d.units, d.long_name);
+  write(path, values, d.units, d.long_name, d.shape);
   comment(path, d);
 }
 

@@ -82,14 +82,16 @@ class Hdf5Writer {
   H5::H5Object& object_at(const std::string& path);
   //! The dataset's units (none for "") and, when given, its long_name (written while it is open).
   void annotate(H5::DataSet& dataset, std::string_view units, std::optional<std::string_view> long_name);
-  //! The raw writes, with the long_name of a described dataset.
-  void write(const std::string& path, std::span<const double> values, std::string_view units, std::optional<std::string_view> long_name);
+  //! The raw writes, with the long_name of a described dataset; a flat array under the
+  //! extent `shape` when one is given (DatasetDescription::shape).
+  void write(const std::string& path, std::span<const double> values, std::string_view units,
+             std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape = {});
   void write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units,
              std::optional<std::string_view> long_name);
   void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
-             std::optional<std::string_view> long_name);
+             std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape = {});
   void write(const std::string& path, const std::vector<std::string>& values, std::string_view units,
-             std::optional<std::string_view> long_name);
+             std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape = {});
   //! The Describer's description of `path`, remembered for commit(); its units unless
   //! `units` is given.
   DatasetDescription described(const std::string& path, std::optional<std::string_view> units = std::nullopt);

@@ -34,11 +34,12 @@ std::string base_name(const std::string& path) { return path.substr(path.rfind('
 std::optional<DatasetDescription> describe_coordinate(const EnsembleAxes& axes, const std::string& path) {
   const std::string name = base_name(path);
   if (in_grid_group(path)) {
-    if (name == GRID_POINT && axes.grid_dimension == GRID_POINT)
+    if (name == GRID_POINT)
       return DatasetDescription{"1", "grid point (the first swept parameter varying slowest)", {GRID_POINT}};
     for (std::size_t a = 0; a < axes.variables.size(); ++a)
-      if (name == axes.variables[a])
-        return DatasetDescription{"", "swept parameter " + axes.parameters[a], {axes.grid_dimension},
+      if (name == axes.variables[a])  // a product grid's axis, else a value per grid point
+        return DatasetDescription{"", "swept parameter " + axes.parameters[a],
+                                  {axes.product() ? axes.variables[a] : axes.grid_dimension},
                                   "in the unit of the study key " + axes.parameters[a]};
   }
   if (path.starts_with("/realisations/"))
@@ -59,7 +60,34 @@ std::optional<DatasetDescription> describe_coordinate(const EnsembleAxes& axes, 
 
 }  // namespace
 
-EnsembleAxes ensemble_axes(const EnsembleSettings& settings) {
+namespace {
+
+//! Each parameter's values in the order of first appearance, if `grid` is their product
+//! with the first parameter varying slowest (so /summary's flat columns reshape to them in
+//! C order); nothing otherwise (a repeated value).
+std::vector<std::vector<double>> product_axes(std::size_t parameters, const std::vector<GridPoint>& grid) {
+  if (parameters == 0) return {};
+  std::vector<std::vector<double>> values(parameters);
+  for (const GridPoint& point : grid)
+    for (std::size_t a = 0; a < parameters; ++a)
+      if (std::find(values[a].begin(), values[a].end(), point.overrides[a].value) == values[a].end())
+        values[a].push_back(point.overrides[a].value);
+  std::size_t size = 1;
+  for (const std::vector<double>& v : values) size *= v.size();
+  if (size != grid.size()) return {};
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    std::size_t rest = g;  // g's digits in the mixed radix of the axes' lengths, last fastest
+    for (std::size_t a = parameters; a-- > 0;) {
+      if (grid[g].overrides[a].value != values[a][rest % values[a].size()]) return {};
+      rest /= values[a].size();
+    }
+  }
+  return values;
+}
+
+}  // namespace
+
+EnsembleAxes ensemble_axes(const EnsembleSettings& settings, const std::vector<GridPoint>& grid) {
   EnsembleAxes axes;
   for (const SweepAxis& axis : settings.sweep) {
     axes.parameters.push_back(axis.parameter);
@@ -67,7 +95,9 @@ EnsembleAxes ensemble_axes(const EnsembleSettings& settings) {
     std::replace(variable.begin(), variable.end(), '.', '_');  // a Python name: .sel(name=value)
     axes.variables.push_back(variable);
   }
-  axes.grid_dimension = axes.variables.size() == 1 ? axes.variables.front() : GRID_POINT;
+  axes.values = product_axes(axes.variables.size(), grid);
+  axes.grid_dimension = axes.product() && axes.variables.size() == 1 ? axes.variables.front() : GRID_POINT;
+  axes.summary_dimensions = axes.product() ? axes.variables : std::vector<std::string>{axes.grid_dimension};
   return axes;
 }
 
@@ -75,6 +105,12 @@ Hdf5Writer::Describer describe_ensemble_output(const EnsembleAxes& axes) {
   return [axes](const std::string& path) {
     if (auto coordinate = describe_coordinate(axes, path)) return *coordinate;
     DatasetDescription d = describe_output(path);
+    if (path.starts_with("/summary/") && d.dimensions == std::vector<std::string>{GRID_POINT}) {
+      // One axis per swept parameter of a product grid: the flat column, reshaped.
+      d.dimensions = axes.summary_dimensions;
+      for (const std::vector<double>& v : axes.values) d.shape.push_back(v.size());
+      return d;
+    }
     const bool per_member = path.starts_with("/realisations/") || path.starts_with("/draws/");
     for (std::string& dimension : d.dimensions) {
       if (dimension == GRID_POINT) dimension = axes.grid_dimension;
@@ -86,14 +122,20 @@ Hdf5Writer::Describer describe_ensemble_output(const EnsembleAxes& axes) {
 
 void write_grid_coordinates(Hdf5Writer& f, const std::string& group, const EnsembleAxes& axes,
                             const std::vector<GridPoint>& grid, const std::vector<std::string>& variables) {
-  if (axes.grid_dimension == GRID_POINT) f.write(group + "/" + GRID_POINT, indices(grid.size()));
+  const std::vector<std::string>& dimensions =
+      group.starts_with("/summary") ? axes.summary_dimensions : std::vector<std::string>{axes.grid_dimension};
+  if (dimensions == std::vector<std::string>{GRID_POINT}) f.write(group + "/" + GRID_POINT, indices(grid.size()));
+  if (axes.product()) {  // each parameter is its own dimension's coordinate
+    for (std::size_t a = 0; a < axes.variables.size(); ++a) f.write(group + "/" + axes.variables[a], axes.values[a]);
+    return;
+  }
   for (std::size_t a = 0; a < axes.variables.size(); ++a) {
     std::vector<double> values;
     for (const GridPoint& point : grid) values.push_back(point.overrides[a].value);
     f.write(group + "/" + axes.variables[a], values);
   }
-  // One swept parameter is the dimension's coordinate; several are auxiliary coordinates.
-  if (axes.variables.size() > 1)
+  // Not a product: the parameters are auxiliary coordinates of grid_point.
+  if (!axes.variables.empty())
     for (const std::string& variable : variables) f.attribute(variable, "coordinates", joined(axes.variables));
 }
 

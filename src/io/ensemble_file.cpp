@@ -88,7 +88,7 @@ void write_summary(Hdf5Writer& f, const std::vector<GridPoint>& grid, std::optio
 }  // namespace
 
 void write_ensemble_file(const std::string& path, const StudyFile& base, const std::vector<GridPoint>& grid) {
-  const EnsembleAxes axes = ensemble_axes(*base.ensemble);
+  const EnsembleAxes axes = ensemble_axes(*base.ensemble, grid);
   Hdf5Writer file(path, describe_ensemble_output(axes));
   write_provenance(file, {.file_type = "stengmc-ensemble",
                           .input_file = base.file,

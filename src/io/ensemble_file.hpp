@@ -11,7 +11,9 @@
 //!   /traces/realisation_<r>/{time, voltage, charge}  for [ensemble] trace_realisations
 //!                   (or trace_all), and measured_voltage with [noise]
 //!                   (in a sweep: /traces/point_<g>/realisation_<r>/...)
-//!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point: count, mean, mean_low, mean_high, std, std_low,
+//!   /summary/<scalar>/  statistics over the valid realisations, one entry per grid point (over
+//!                   a product grid shaped n_1 x ... x n_A, one axis per swept parameter,
+//!                   io/ensemble_coordinates.hpp): count, mean, mean_low, mean_high, std, std_low,
 //!                   std_high, median, median_low, median_high, p05, p05_low, p05_high,
 //!                   p95, p95_low, p95_high, min, max, and <name>_method, <name>_known
 //!   /summary/pooled/ fft_ratio, hr_ratio, valid_fraction, each with _low and _high (G each)
@@ -23,7 +25,8 @@
 //!                   only_realisation (the id run by --only, else -1); merge --partial only:
 //!                   partial (1), realisations_expected (grid points x realisations),
 //!                   realisations_present
-//!   coordinates for xarray (io/ensemble_coordinates.hpp): member, the swept values,
+//!   coordinates for xarray (io/ensemble_coordinates.hpp): member, the swept values (a
+//!                   product grid's axes, else auxiliary coordinates of grid_point),
 //!                   /asperities/asperity_count (CF ragged-array count), index coordinates
 //! Nothing in the datasets depends on the number of threads or on interruptions.
 #include <string>

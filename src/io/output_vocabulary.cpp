@@ -57,6 +57,7 @@ constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its par
 constexpr std::array TERMS{
     // run file (and `circuit` file): the realisation
     Term{"/time", "s", "time", "time"},
+    Term{"/valid_time", "s", "time of the samples the circuit of a flagged run reached", "valid_time"},
     Term{"/asperity/k", "N/m", "asperity tangential stiffness", "asperity"},
     Term{"/asperity/m", "kg", "asperity effective mass", "asperity"},
     Term{"/asperity/N", "N", "asperity normal load", "asperity"},
@@ -109,6 +110,11 @@ constexpr std::array TERMS{
     Term{"/spectrogram/frequency", "Hz", "frequency", "frequency"},
     Term{"/spectrogram/voltage", "V", "amplitude spectrum of the load voltage per segment", "window_time frequency"},
     // populations (surface file at /, run file at /surface)
+    Term{"/summit", "1", "summit: row of /summits (every realisation's summits in turn)", "summit"},
+    Term{"/surface/summit", "1", "summit: row of /surface/summits (every realisation's summits in turn)", "summit"},
+    Term{"/asperity", "1", "asperity: row of /asperities (every realisation's asperities in turn)", "asperity"},
+    Term{"/surface/asperity", "1", "asperity: row of /surface/asperities (every realisation's asperities in turn)",
+         "asperity"},
     Term{"*/realisations/realisation", "1", "realisation id", "realisation"},
     Term{"*/realisations/summit_count", "1", "summits drawn", "realisation"},
     Term{"*/realisations/asperity_count", "1", "summits in contact: the asperities simulated", "realisation"},

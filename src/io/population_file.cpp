@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <numeric>
 #include <vector>
 
 #include "core/error.hpp"
@@ -34,6 +35,13 @@ std::vector<double> concatenated(std::span<const Population> pops,
   return out;
 }
 
+//! 0 .. count-1: the rows of a flat array.
+std::vector<std::int64_t> indices(std::int64_t count) {
+  std::vector<std::int64_t> out(static_cast<std::size_t>(count));
+  std::iota(out.begin(), out.end(), std::int64_t{0});
+  return out;
+}
+
 std::vector<double> asperity_column(std::span<const Population> pops, const std::function<double(const Asperity&)>& field) {
   std::vector<double> out;
   for (const Population& p : pops)
@@ -62,6 +70,12 @@ void write_realisations(Hdf5Writer& f, const std::string& g, std::span<const Pop
   }
   f.write(g + "/realisations/summit_offset", summit_offset);
   f.write(g + "/realisations/asperity_offset", asperity_offset);
+  // CF contiguous ragged arrays (CF 1.10, 9.3.3): each count names the dimension it splits,
+  // whose coordinate sits in G so that /realisations, /summits and /asperities all see it.
+  f.attribute(g + "/realisations/summit_count", "sample_dimension", "summit");
+  f.attribute(g + "/realisations/asperity_count", "sample_dimension", "asperity");
+  f.write(g + "/summit", indices(summit_offset.back()));
+  f.write(g + "/asperity", indices(asperity_offset.back()));
   if (!contact) return;
   auto c = [](P p) -> const PopulationContact& { return *p.contact; };
   f.write(g + "/realisations/separation_m", per_realisation<double>(pops, reports, [&](P p, R) { return c(p).separation_m; }));

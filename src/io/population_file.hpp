@@ -2,7 +2,8 @@
 //! Sampled populations and their validity reports in an HDF5 file (docs/output-files.md).
 //! One layout for `stengmc surface` (group "/") and for a run's own realisation (group
 //! "/surface"), so every tool reads both the same way. K realisations are stored as flat
-//! arrays with offsets, realisation j's summits being [summit_offset[j], summit_offset[j+1]).
+//! arrays with offsets, realisation j's summits being [summit_offset[j], summit_offset[j+1]),
+//! and as CF contiguous ragged arrays (the counts below).
 //!
 //!   G/realisations/  one entry per realisation:
 //!     realisation, summit_count, asperity_count, cannot_slip_model1_count,
@@ -16,6 +17,8 @@
 //!     load_carried (0/1: 0 when a Hertz load found no summit), localisation_radius_m,
 //!     far_field_m (the uniform displacement of the nominal pressure outside R_loc);
 //!     attribute `kernel` ("hertz_pressure" or "point_load")
+//!     summit_count and asperity_count are CF ragged-array counts (sample_dimension
+//!     "summit", "asperity": their index coordinates G/summit and G/asperity)
 //!   G/summits/       every sampled summit: height_m, x_m, y_m, drive_phase_rad, normal_load_n,
 //!     sampled_stiffness_n_per_m (stiffness rule "sampled"); with material data also
 //!     interference_m, patch_radius_m, extra_displacement_m, interaction_relative

@@ -145,6 +145,10 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   file.write("/asperity/solver_steps",
              column(result.trajectories, [](const Trajectory& t) { return static_cast<std::int64_t>(t.solver_steps); }));
 
+  // A flagged run's circuit stops at the first domain_exit: its own time axis (the leading
+  // samples of /time), so that valid_time has a coordinate in seconds, not an index.
+  if (result.circuit.voltage_v.size() < result.times_s.size())
+    file.write("/valid_time", std::span(result.times_s).first(result.circuit.voltage_v.size()));
   write_circuit(file, result.circuit, study.circuit, traces);
   // R, C_L and substeps above are then the built-in load's, unused: ngspice solved the
   // root's netlist_text.

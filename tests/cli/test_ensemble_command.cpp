@@ -297,8 +297,9 @@ TEST(EnsembleCommand, ASweepPointEqualsTheStudyEditedByHand) {
     ASSERT_EQ(point3.size(), mine.size()) << name;
     EXPECT_EQ(std::memcmp(point3.data(), mine.data(), mine.size() * sizeof(double)), 0) << name;
   }
-  EXPECT_EQ(a.vector("/summary/asperity_count/mean")[3], 3.0);
-  EXPECT_EQ(a.vector("/summary/asperity_count/mean")[0], 2.0);
+  // A product grid: the statistics over (count, velocity), point 3 at [1][1].
+  EXPECT_EQ(a.matrix("/summary/asperity_count/mean")[1][1], 3.0);
+  EXPECT_EQ(a.matrix("/summary/asperity_count/mean")[0][0], 2.0);
 }
 
 TEST(EnsembleCommand, NoiseHasTheClosedFormSigmaAndASingleRunIsTheEnsemblesRecord) {

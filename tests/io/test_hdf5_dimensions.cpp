@@ -1,5 +1,5 @@
-// Dimension scales of described datasets (core/hdf5_dimensions): coordinates and pure
-// dimensions as netCDF-4 lays them out, and descriptions that contradict the data refused.
+// Dimension scales of described datasets (core/hdf5_dimensions): coordinates and index
+// coordinates as netCDF-4 lays them out, and descriptions that contradict the data refused.
 // (That whole files open in xarray is Io.OutputsOpenInXarray.)
 #include <gtest/gtest.h>
 
@@ -44,7 +44,7 @@ std::string attribute_text(hid_t object, const char* name) {
   return text;
 }
 
-TEST(Hdf5Dimensions, CoordinatesArePreferredAndOtherAxesGetPureDimensions) {
+TEST(Hdf5Dimensions, CoordinatesArePreferredAndOtherAxesGetIndexCoordinates) {
   testing::ScratchDir scratch("hdf5-dimensions");
   const std::string out = scratch.file("out.h5");
   {
@@ -57,11 +57,15 @@ TEST(Hdf5Dimensions, CoordinatesArePreferredAndOtherAxesGetPureDimensions) {
   const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   const hid_t time = H5Dopen2(f, "/time", H5P_DEFAULT), x = H5Dopen2(f, "/a/x", H5P_DEFAULT),
               k = H5Dopen2(f, "/a/k", H5P_DEFAULT), n = H5Dopen2(f, "/a/n", H5P_DEFAULT);
-  ASSERT_GE(n, 0) << "no pure dimension /a/n";
+  ASSERT_GE(n, 0) << "no index coordinate /a/n";
   EXPECT_GT(H5DSis_scale(time), 0);
   EXPECT_EQ(attribute_text(time, "NAME"), "time");  // a coordinate variable: named as itself
-  // netCDF-C's marker for a dimension that is not a variable, with its length.
-  EXPECT_EQ(attribute_text(n, "NAME"), "This is a netCDF dimension but not a netCDF variable.         2");
+  // An axis without a coordinate gets one: its index 0, 1 (a coordinate variable too, not
+  // netCDF-C's pure dimension, which xarray shows unlabelled).
+  EXPECT_EQ(attribute_text(n, "NAME"), "n");
+  EXPECT_EQ(attribute_text(n, "units"), "1");
+  EXPECT_EQ(attribute_text(n, "long_name"), "index along dimension n");
+  EXPECT_EQ(Hdf5Reader(out).vector("/a/n"), (std::vector<double>{0.0, 1.0}));
   EXPECT_GT(H5DSis_attached(x, n, 0), 0);
   EXPECT_GT(H5DSis_attached(x, time, 1), 0);  // the root's /time, seen from /a
   EXPECT_GT(H5DSis_attached(k, n, 0), 0);

@@ -19,8 +19,13 @@ without any stengmc code. It asserts, against the files' own datasets read with 
 - that netCDF-C's `ncdump -h` reads every file, that the root says
   Conventions = "CF-1.10", and that UDUNITS-2's `udunits2` parses every `units`
   attribute of every file (each failing string is reported with its variables);
-- that every dataset of the file appears as a variable of its group, or is one of the
-  pure dimensions the writer made (so nothing is hidden).
+- that every dataset of the file appears as a variable of its group (no netCDF "pure"
+  dimension, which would be a dimension without a coordinate);
+- that every dimension of every variable has a coordinate of its name (1-D, as long, with
+  long_name and units) in its group or an enclosing one, a pure index being 0..n-1;
+- that a sweep whose grid is a product has one dimension per swept parameter in /summary,
+  selectable by value, and one that is not keeps grid_point with auxiliary coordinates;
+- that populations are CF contiguous ragged arrays (counts with sample_dimension).
 xarray, h5netcdf, ncdump (netcdf-bin) and udunits2 (udunits-bin) are declared
 dependencies (scripts/setup.sh): their absence fails.
 
@@ -83,8 +88,7 @@ def check_every_group(path):
                     if not isinstance(item, h5py.Dataset):
                         continue
                     if PURE_DIMENSION in item.attrs.get("NAME", b""):
-                        check(key in ds.dims and ds.dims[key] == item.shape[0],
-                              f"{name}: pure dimension {key} is not a dimension of the group")
+                        check(False, f"{name}: {key} is a netCDF pure dimension: a dimension without a coordinate")
                         continue
                     check(key in ds.variables, f"{name}: dataset {key} is not a variable")
                     if key not in ds.variables:
@@ -214,6 +218,13 @@ max = 0.3
 """
 
 # Two swept parameters: a product grid of 2 x 2 points, over grid_point.
+# A value repeated: 3 grid points that are no product.
+SWEEP_REPEATED = """
+[[ensemble.sweep]]
+parameter = "surface.summits.count"
+values = [2, 1, 2]
+"""
+
 SWEEP_TWO_PARAMETERS = """
 [[ensemble.sweep]]
 parameter = "surface.summits.count"
@@ -234,10 +245,72 @@ def dimensions_of(path):
     return found
 
 
+def ancestors(group):
+    """The group and its enclosing groups, nearest first: where netCDF-4 looks for a dimension."""
+    parts = group.strip("/").split("/") if group != "/" else []
+    return ["/" + "/".join(parts[:i]) for i in range(len(parts), 0, -1)] + ["/"]
+
+
 def check_every_dimension_has_a_coordinate(path):
-    for group, (dimensions, coordinates) in dimensions_of(path).items():
-        for dimension in sorted(dimensions - coordinates):
-            check(False, f"{os.path.basename(path)}:{group}: dimension {dimension} has no coordinate")
+    """Every dimension of every variable of every group has a coordinate variable of its name,
+    in the group or (netCDF-4's scoping, which stengmc.open's to_xarray follows) an enclosing
+    one: 1-D over that dimension, as long, with a long_name, and units (or a comment saying
+    whose unit it has: a swept parameter's values)."""
+    name = os.path.basename(path)
+    opened = {}
+    for group in groups_of(path):
+        with open_group(path, group) as ds:
+            opened[group] = ds.load()
+    for group, ds in opened.items():
+        for variable in ds.variables.values():
+            for dimension in variable.dims:
+                holder = next((g for g in ancestors(group) if dimension in opened[g].coords
+                               and opened[g].coords[dimension].dims == (dimension,)), None)
+                if holder is None:
+                    check(False, f"{name}:{group}: dimension {dimension} has no coordinate")
+                    continue
+                coordinate = opened[holder].coords[dimension]
+                attrs = coordinate.attrs
+                check(coordinate.size == ds.sizes[dimension],
+                      f"{name}:{group}: dimension {dimension} is {ds.sizes[dimension]} long, its coordinate in "
+                      f"{holder} {coordinate.size}")
+                check(isinstance(attrs.get("long_name"), str) and attrs["long_name"] != ""
+                      and (isinstance(attrs.get("units"), str) and attrs["units"] != "" or "comment" in attrs),
+                      f"{name}:{holder}: coordinate {dimension} has no long_name or units")
+
+
+def check_index_coordinate(path, group, dimension, length_of):
+    """A dimension that is a pure index has the coordinate 0 .. n-1 (n: the length of `length_of`)."""
+    with open_group(path, group) as ds, h5py.File(path, "r") as f:
+        n = f[length_of].shape[0]
+        ok = dimension in ds.coords and np.array_equal(ds.coords[dimension].values, np.arange(n)) \
+            and ds.coords[dimension].attrs.get("long_name") == f"index along dimension {dimension}" \
+            and ds.coords[dimension].attrs.get("units") == "1"
+        check(ok, f"{os.path.basename(path)}:{group}: {dimension} is not the index coordinate 0..{n - 1}")
+
+
+def check_population_ragged(path, base):
+    """A population is a CF contiguous ragged array twice over: /realisations' summit_count and
+    asperity_count name the sample dimensions summit and asperity, which they split, as the
+    offsets say, and whose coordinates every group of the population sees."""
+    name = os.path.basename(path)
+    with h5py.File(path, "r") as f:
+        for count, sample, table, column in (("summit_count", "summit", "summits", "height_m"),
+                                             ("asperity_count", "asperity", "asperities", "stiffness_n_per_m")):
+            counts = f[f"{base}/realisations/{count}"]
+            check(text(counts.attrs.get("sample_dimension", "")) == sample,
+                  f"{name}:{base}/realisations/{count} has no sample_dimension = {sample}")
+            offsets = f[f"{base}/realisations/{sample}_offset"][()]
+            check(np.array_equal(counts[()], np.diff(offsets)), f"{name}:{base}: {count} disagrees with the offsets")
+            rows = f[f"{base}/{table}/{column}"].shape[0]
+            check(int(counts[()].sum()) == rows == offsets[-1], f"{name}:{base}: {count} does not sum to the {table}")
+            for group in ("realisations", table):
+                with open_group(path, f"{base}/{group}") as ds:
+                    check(sample not in ds.dims or ds.sizes[sample] == rows,
+                          f"{name}:{base}/{group}: dimension {sample} is not the {table}' rows")
+            with open_group(path, base or "/") as ds:
+                check(sample in ds.coords and np.array_equal(ds.coords[sample].values, np.arange(rows)),
+                      f"{name}:{base or '/'}: no index coordinate {sample} beside the population's groups")
 
 
 def check_members(path):
@@ -304,18 +377,47 @@ def check_one_parameter_selects(path):
                       f"sweep.h5: sel(surface_summits_count={value})[{statistic!r}] is not grid point {g}'s")
 
 
+def valid_rows(f, g, statistic):
+    """The valid rows of grid point g of /realisations/voltage_rms_v, read with h5py."""
+    rows = (f["realisations/grid_point"][()] == g) & (f["realisations/valid"][()] == 1)
+    return f["realisations/voltage_rms_v"][rows]
+
+
 def check_two_parameters_select(path):
-    """With two swept parameters, each is a coordinate of grid_point; indexed by both, .sel picks a point."""
-    names = ["surface_summits_count", "model_belt_velocity_m_per_s"]
+    """A product grid of two swept parameters: /summary has one dimension per parameter, with
+    the parameter's values as its coordinate, and .sel on both picks the grid point whose
+    /grid/values row holds them: its count and mean are those of its valid rows of /realisations."""
+    names = ("surface_summits_count", "model_belt_velocity_m_per_s")
     with h5py.File(path, "r") as f, open_group(path, "/summary/voltage_rms_v") as ds:
-        check(all(n in ds.coords for n in names), f"sweep2.h5: {names} are not coordinates of /summary")
-        indexed = ds.set_index(grid_point=names)
+        check(ds["mean"].dims == names, f"sweep2.h5: /summary dims {ds['mean'].dims}, not {names}")
+        check(list(ds["surface_summits_count"].values) == [1.0, 2.0]
+              and list(ds["model_belt_velocity_m_per_s"].values) == [10.0, 12.0],
+              "sweep2.h5: the summary's coordinates are not the study's swept values")
         for count in (1.0, 2.0):
             for velocity in (10.0, 12.0):
                 g = grid_point_of(f, [count, velocity])
-                picked = indexed.sel(surface_summits_count=count, model_belt_velocity_m_per_s=velocity)
-                check(np.array_equal(picked["mean"].values, f["summary/voltage_rms_v/mean"][g], equal_nan=True),
-                      f"sweep2.h5: sel(count={count}, velocity={velocity}) is not grid point {g}'s")
+                picked = ds.sel(surface_summits_count=count, model_belt_velocity_m_per_s=velocity)
+                kept = valid_rows(f, g, "voltage_rms_v")
+                check(int(picked["count"]) == len(kept) and (len(kept) == 0 or np.isclose(
+                    float(picked["mean"]), kept.mean(), rtol=1e-12)) and float(picked["max"]) == kept.max(),
+                      f"sweep2.h5: sel(count={count}, velocity={velocity}) is not grid point {g}'s statistics")
+    with open_group(path, "/grid") as ds:
+        check(ds["values"].dims == ("grid_point", "parameter") and list(ds["surface_summits_count"].values) == [1.0, 2.0],
+              "sweep2.h5: /grid is not one row per grid point with each parameter's values as a coordinate")
+
+
+def check_not_a_product(path):
+    """A sweep whose values repeat is no product: /summary stays over grid_point, the swept
+    parameter an auxiliary coordinate of it, and set_index makes it selectable (both points of 2)."""
+    with h5py.File(path, "r") as f, open_group(path, "/summary/voltage_rms_v") as ds:
+        check(ds["mean"].dims == ("grid_point",) and "surface_summits_count" in ds.coords
+              and ds["surface_summits_count"].dims == ("grid_point",),
+              f"sweep_repeated.h5: /summary is over {ds['mean'].dims}, not a grid_point with the count as coordinate")
+        check(list(ds["grid_point"].values) == [0, 1, 2], "sweep_repeated.h5: grid_point is not 0, 1, 2")
+        picked = ds.set_index(grid_point="surface_summits_count").sel(grid_point=2.0)
+        points = [g for g, row in enumerate(f["grid/values"][()]) if row[0] == 2.0]
+        check(points == [0, 2] and list(picked["count"].values) == [len(valid_rows(f, g, "voltage_rms_v")) for g in points],
+              "sweep_repeated.h5: selecting count 2 does not give grid points 0 and 2")
 
 
 def device_study():
@@ -367,6 +469,9 @@ def main():
         run(binary, "run", out("single.toml"), "-j", "2", "-o", out("single.h5"), cwd=work)
         run(binary, "run", out("sweep.toml"), "-j", "2", "-o", out("sweep.h5"), cwd=work)
         run(binary, "run", out("sweep2.toml"), "-j", "2", "-o", out("sweep2.h5"), cwd=work)
+        with open(out("sweep_repeated.toml"), "w") as f:
+            f.write(ENSEMBLE.format(surface=surface) + SWEEP_REPEATED)
+        run(binary, "run", out("sweep_repeated.toml"), "-j", "2", "-o", out("sweep_repeated.h5"), cwd=work)
         with open(out("device.toml"), "w") as f:
             f.write(device_study())
         run(binary, "calibrate", out("device.toml"), "-j", "2", "-o", out("bank.h5"), cwd=work)
@@ -378,11 +483,11 @@ def main():
         run(binary, "invert", out("record.csv"), "--known", out("device.toml"), "--bank", out("bank.h5"),
             "-o", out("inverse.h5"), cwd=work)
 
-        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5", "sweep2.h5",
-                 "bank.h5",
-                 "inverse.h5"]
+        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5",
+                 "sweep2.h5", "sweep_repeated.h5", "bank.h5", "inverse.h5"]
         for name in files:
             check_every_group(out(name))
+            check_every_dimension_has_a_coordinate(out(name))
         distinct_units = check_netcdf_c_and_units([out(name) for name in files])
 
         for name in ("run.h5", "random.h5"):
@@ -408,6 +513,11 @@ def main():
         expect_coordinate(r, "/spectrogram", "window_time", "/spectrogram/window_time")
         expect_coordinate(r, "/spectrogram", "frequency", "/spectrogram/frequency")
         expect_dims(out("random.h5"), "/surface/summits", "height_m", ("summit",))
+        check_population_ragged(out("random.h5"), "/surface")
+        # Pure indices: 0 .. n-1 with a long_name saying so.
+        check_index_coordinate(r, "/events", "event", "/events/time")
+        check_index_coordinate(r, "/asperity", "asperity", "/asperity/k")
+        check_index_coordinate(r, "/spectrum/lines", "line", "/spectrum/lines/frequency")
         # A flagged run's circuit spans the leading samples of /time only: its own axis.
         f = out("flagged.h5")
         expect_dims(f, "/circuit", "voltage", ("valid_time",))
@@ -415,6 +525,12 @@ def main():
         expect_dims(f, "/asperity", "x", ("asperity", "time"))
         with h5py.File(f, "r") as h:
             check(h["circuit/voltage"].shape[0] < h["time"].shape[0], "flagged.h5: the circuit did not stop early")
+            # Its own axis has the times of the samples it reached, in seconds.
+            reached = h["circuit/voltage"].shape[0]
+            check("valid_time" in h and np.array_equal(h["valid_time"][()], h["time"][:reached])
+                  and text(h["valid_time"].attrs.get("units")) == "s",
+                  "flagged.h5: /valid_time is not the leading samples of /time")
+        expect_coordinate(f, "/", "valid_time", "/valid_time")
 
         c = out("circuit.h5")
         expect_coordinate(c, "/", "time", "/time")
@@ -433,21 +549,24 @@ def main():
         expect_coordinate(p, "/target/heights", "value", "/target/heights/value")
         expect_dims(p, "/target/heights", "density", ("value",))
         expect_dims(p, "/load_separation", "total_load_n", ("separation_m",))
+        check_population_ragged(p, "")
+        check_index_coordinate(p, "/realisations", "realisation_boundary", "/realisations/summit_offset")
 
-        for name, grid_dimension in (("single.h5", "grid_point"), ("sweep.h5", "surface_summits_count"),
-                                     ("sweep2.h5", "grid_point")):
+        for name, summary_dimensions in (("single.h5", ("grid_point",)), ("sweep.h5", ("surface_summits_count",)),
+                                         ("sweep2.h5", ("surface_summits_count", "model_belt_velocity_m_per_s")),
+                                         ("sweep_repeated.h5", ("grid_point",))):
             e = out(name)
             expect_coordinate(e, "/realisations", "member", "/realisations/member")
             for variable in ("voltage_rms_v", "valid", "grid_point", "realisation", "fft_ratio"):
                 expect_dims(e, "/realisations", variable, ("member",))
             expect_dims(e, "/asperities", "natural_frequency_hz", ("asperity",))
-            expect_dims(e, "/summary/voltage_rms_v", "mean", (grid_dimension,))
-            expect_dims(e, "/summary/pooled", "fft_ratio_low", (grid_dimension,))
-            check_every_dimension_has_a_coordinate(e)
+            expect_dims(e, "/summary/voltage_rms_v", "mean", summary_dimensions)
+            expect_dims(e, "/summary/pooled", "fft_ratio_low", summary_dimensions)
             check_members(e)
             check_ragged_asperities(e)
         check_one_parameter_selects(out("sweep.h5"))
         check_two_parameters_select(out("sweep2.h5"))
+        check_not_a_product(out("sweep_repeated.h5"))
         trace = "/traces/realisation_0"
         expect_coordinate(out("single.h5"), trace, "time", trace + "/time")
         expect_dims(out("single.h5"), trace, "voltage", ("time",))
@@ -471,6 +590,7 @@ def main():
 
         i = out("inverse.h5")
         expect_dims(i, "/inverse/records", "noise_sigma_v", ("record",))
+        check_index_coordinate(i, "/inverse/records", "record", "/inverse/records/noise_sigma_v")
         expect_coordinate(i, "/inverse/count", "counts", "/inverse/count/counts")
         expect_dims(i, "/inverse/count", "probability", ("record", "counts"))
         expect_dims(i, "/inverse/lines", "frequency_hz", ("line",))

@@ -20,18 +20,26 @@ def run_cli(*arguments, cwd=None):
 
 
 PURE_DIMENSION = b"This is a netCDF dimension but not a netCDF variable."
+INDEX_LONG_NAME = "index along dimension "  # core/hdf5_dimensions.hpp: INDEX_LONG_NAME
 
 
 def is_pure_dimension(dataset):
+    """A dataset that only labels other datasets' axes, and holds nothing of the result: a
+    netCDF pure dimension (files of stengmc 0.1.0) or an index coordinate 0..n-1 the writer
+    made for a dimension without one (its long_name says so)."""
+    if not h5py.h5ds.is_scale(dataset.id):
+        return False
     name = dataset.attrs.get("NAME", b"")
     name = name if isinstance(name, bytes) else str(name).encode()
-    return h5py.h5ds.is_scale(dataset.id) and name.startswith(PURE_DIMENSION)
+    long_name = dataset.attrs.get("long_name", "")
+    long_name = long_name.decode() if isinstance(long_name, bytes) else str(long_name)
+    return name.startswith(PURE_DIMENSION) or long_name.startswith(INDEX_LONG_NAME)
 
 
 def read_datasets(path, group):
     """Every dataset under `group` of an HDF5 file, by its path below the group; strings as
-    str. netCDF's pure dimensions are left out: datasets without values that only name other
-    datasets' axes (for xarray). Coordinates (time, frequency, ...) are data and stay."""
+    str. Index coordinates and netCDF's pure dimensions are left out: datasets that only
+    label other datasets' axes (for xarray). Coordinates (time, frequency, ...) are data and stay."""
     out = {}
     with h5py.File(path, "r") as f:
         def visit(name, item):

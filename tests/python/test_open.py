@@ -82,13 +82,17 @@ def output_files(tmp_path_factory):
 
 
 def h5_groups(path):
-    """{group path: {dataset name: values}} of the datasets h5py sees, pure dimensions left out."""
+    """{group path: {dataset name: values}} of the datasets h5py sees, every group that holds
+    one (a run's /surface holds only the index coordinates its groups share), the values of
+    pure dimensions and index coordinates left out."""
     groups = {}
     with h5py.File(path, "r") as f:
         def visit(name, item):
-            if isinstance(item, h5py.Dataset) and not is_pure_dimension(item):
+            if isinstance(item, h5py.Dataset):
                 group, _, leaf = name.rpartition("/")
-                groups.setdefault(group or "/", {})[leaf] = item[()]
+                variables = groups.setdefault(group or "/", {})
+                if not is_pure_dimension(item):
+                    variables[leaf] = item[()]
         f.visititems(visit)
     return groups
 
