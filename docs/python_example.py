@@ -23,6 +23,14 @@ slides = run.asperities["slip_fraction"] > 0
 print(f"{slides.sum()} of {slides.size} asperities slide; their median stiffness "
       f"{np.median(run.asperities['stiffness_n_per_m'][slides]):.4g} N/m")
 
+# %% The same realisation's surface alone: summits and contact, without a run
+sample = stengmc.load_study("studies/surfaces/gw_vb10.toml").surface.sample(realisation=2)  # the study's seed
+summits, asperities, contact = sample["summits"], sample["asperities"], sample["contact"]
+print(f"{summits['height_m'].size} summits, {asperities['summit'].size} in contact carrying {contact['total_load_n']:.3g} N "
+      f"on {contact['real_area_m2']:.3g} m^2; the run's stiffnesses: "
+      f"{np.array_equal(asperities['stiffness_n_per_m'], run.asperities['stiffness_n_per_m'])}")
+print("heights of the first summits in contact [um]:", np.round(1e6 * summits["height_m"][asperities["summit"]][:5], 3))
+
 # %% A study edited as a dict: the quick ensemble, one grid point, 8 realisations
 with open("studies/ensembles/identifiability_quick.toml", "rb") as f:
     quick = tomllib.load(f)

@@ -11,5 +11,6 @@ void bind_ensemble(pybind11::module_& m);  //!< ensemble_binding.cpp: an [ensemb
 void bind_invert(pybind11::module_& m);    //!< invert_binding.cpp: the inverse estimator
 void bind_spectrum(pybind11::module_& m);  //!< spectrum_binding.cpp: a record's spectra from numpy
 void bind_circuit(pybind11::module_& m);   //!< circuit_binding.cpp: the circuit driven by numpy displacements
+void bind_surface(pybind11::module_& m);   //!< surface_binding.cpp: a surface and its samples as numpy arrays
 
 }  // namespace stengmc::python

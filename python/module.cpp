@@ -14,4 +14,5 @@ PYBIND11_MODULE(_core, m) {
   stengmc::python::bind_invert(m);
   stengmc::python::bind_spectrum(m);
   stengmc::python::bind_circuit(m);
+  stengmc::python::bind_surface(m);
 }

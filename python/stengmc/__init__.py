@@ -17,6 +17,7 @@ from .results import Ensemble, Run
 from .run_file import RunFile
 from .spectrum import spectrum
 from .study import Study, load_study
+from .surface import Surface, load_surface, surface
 from .toml_text import toml_text
 
 __version__ = _core.version
@@ -34,5 +35,5 @@ def run_ensemble(study, threads=0, progress=False):
 
 
 __all__ = ["circuit", "Ensemble", "Error", "InputError", "ModelError", "OutputFile", "Run", "RunFile", "Study", "invert",
-           "load_study", "open", "run", "spectrum",
+           "load_study", "load_surface", "open", "run", "spectrum", "surface", "Surface",
            "run_ensemble", "toml_text", "git_revision"]

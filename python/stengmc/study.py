@@ -8,6 +8,7 @@ from .errors import InputError
 from .progress import Progress
 from .results import Ensemble, Run
 from .sections import SECTIONS, Section
+from .surface import StudySurface
 from .toml_text import toml_text
 
 
@@ -28,6 +29,8 @@ class Study:
     def __getattr__(self, name):
         if name.startswith("_"):  # not set yet (copy, pickle): no delegation
             raise AttributeError(name)
+        if name == "surface":  # its keys, and sample() of the surface the study draws from
+            return StudySurface(self, (name,))
         if name in SECTIONS:
             return Section(self, (name,))
         return getattr(self._study, name)

@@ -55,13 +55,26 @@ void merge_partial(const MergeOptions& options) {
     for (const auto& [g, finished] : finished_by_point(source, grid)) points[g].insert(finished.begin(), finished.end());
   }
   const std::uint64_t realisations = study.ensemble->realisations;
+  // A grid point without one finished realisation has no row and no statistic to write, and
+  // NaN in their place would read as a result: refuse, naming every such point, so the
+  // researcher knows which journals or shards to add (or to wait for).
+  std::vector<std::size_t> empty;
+  for (std::size_t g = 0; g < grid.size(); ++g)
+    if (points[g].empty()) empty.push_back(g);
+  if (!empty.empty()) {
+    std::string named;
+    for (std::size_t k = 0; k < empty.size() && k < 10; ++k)
+      named += std::string(k ? "; " : "") + std::to_string(empty[k] + 1) +
+               (grid.size() > 1 ? " (" + describe_grid_point(grid[empty[k]], true) + ")" : std::string());
+    if (empty.size() > 10) named += "; ... (" + std::to_string(empty.size() - 10) + " more)";
+    throw InputError("merge --partial: no file given holds a finished realisation of grid point" +
+                     std::string(empty.size() > 1 ? "s " : " ") + named + " of " + std::to_string(grid.size()) + " in " +
+                     study.file + ": an ensemble file has every grid point of its study, each with at least one "
+                     "realisation. Add the journals (OUT.point<g>.journal) or shard files that hold them, or wait "
+                     "until the run has finished one at each point; nothing was written");
+  }
   std::size_t present = 0;
   for (std::size_t g = 0; g < grid.size(); ++g) {
-    if (points[g].empty())
-      throw InputError("merge --partial: no file given holds a finished realisation of grid point " + std::to_string(g + 1) +
-                       " of " + std::to_string(grid.size()) +
-                       (grid.size() > 1 ? " (" + describe_grid_point(grid[g], true) + ")" : std::string()) +
-                       ": an ensemble file needs at least one at every point");
     EnsembleRun& run = grid[g].run;
     run = EnsembleRun{};
     run.requested = realisations;

@@ -48,6 +48,7 @@ void print_points(const PartialSource& source, const SourceStudy& study) {
   const std::uint64_t realisations = study.study.ensemble->realisations;
   const auto finished = finished_by_point(source, study.grid);
   const std::vector<std::uint64_t> expected = expected_ids(source, realisations);
+  const std::optional<ShardSpec>& slice = source.shard ? source.shard : source.journal_shard;
   // A shard file covers every grid point; a journal its own.
   std::vector<std::size_t> points;
   if (source.shard)
@@ -67,7 +68,7 @@ void print_points(const PartialSource& source, const SourceStudy& study) {
     all_expected += expected.size();
     std::printf("  grid point %zu of %zu%s: %zu of %zu realisations finished%s\n", g + 1, study.grid.size(),
                 study.grid.size() > 1 ? (" (" + describe_grid_point(study.grid[g], true) + ")").c_str() : "", done,
-                expected.size(), source.shard ? (" (shard " + source.shard->text() + "'s share)").c_str() : "");
+                expected.size(), slice ? (" (shard " + slice->text() + "'s share)").c_str() : "");
     std::printf("    missing: %s\n", missing.empty() ? "none" : id_ranges(missing).c_str());
   }
   if (points.size() > 1) std::printf("  in all: %zu of %zu realisations finished\n", all_finished, all_expected);
@@ -77,7 +78,11 @@ void status(const StatusOptions& options) {
   const PartialSource source = read_partial_source(options.file);
   std::printf("%s: %s\n", source.path.c_str(),
               source.complete ? ("a finished shard file, shard " + source.shard->text()).c_str()
-                              : "a journal of a run in progress or interrupted (the same run command resumes it)");
+              : source.journal_shard
+                  ? ("a journal of shard " + source.journal_shard->text() +
+                     "'s run, in progress or interrupted (the same run command resumes it)")
+                        .c_str()
+                  : "a journal of a run in progress or interrupted (the same run command resumes it)");
   std::printf("  study: %s (%s identity %s)\n", source.study_file.empty() ? "(not named)" : source.study_file.c_str(),
               source.shard ? "study" : "grid point", hex(source.identity).c_str());
   std::printf("  records: %zu intact\n", source.records.size());

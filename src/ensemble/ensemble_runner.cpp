@@ -158,18 +158,36 @@ std::uint64_t ensemble_identity_hash(const Study& study) {
 
 namespace {
 constexpr std::string_view JOURNAL_STUDY_PREFIX = "), study ";
+constexpr std::string_view JOURNAL_SHARD_PREFIX = "; shard ";
 }
 
-JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook) {
+JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook,
+                                          const std::optional<ShardSpec>& shard) {
   const std::uint64_t identity =
       hook.identity.empty() ? ensemble_identity_hash(study) : fnv1a64(hook.identity, ensemble_identity_hash(study));
   return {identity, std::string("stengmc ") + program_version() + " (git " + git_revision() +
+                        (shard ? std::string(JOURNAL_SHARD_PREFIX) + shard->text() : std::string()) +
                         std::string(JOURNAL_STUDY_PREFIX) + study.file};
 }
 
 std::string journal_study_file(const std::string& description) {
   const auto at = description.find(JOURNAL_STUDY_PREFIX);
   return at == std::string::npos ? std::string() : description.substr(at + JOURNAL_STUDY_PREFIX.size());
+}
+
+std::optional<ShardSpec> journal_shard(const std::string& description) {
+  // Only the part before ", study ": a study path may contain anything.
+  const std::string head = description.substr(0, description.find(JOURNAL_STUDY_PREFIX));
+  const auto at = head.find(JOURNAL_SHARD_PREFIX);
+  if (at == std::string::npos) return std::nullopt;
+  const std::string text = head.substr(at + JOURNAL_SHARD_PREFIX.size());
+  try {
+    return parse_shard_spec(text);
+  } catch (const InputError&) {
+    std::string message = "its header names shard \"";
+    message.append(text).append("\": expected i/n, two whole numbers with 0 <= i < n");
+    throw InputError(message);
+  }
 }
 
 EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path, const EnsembleOptions& options,
@@ -205,7 +223,7 @@ EnsembleRun run_ensemble(const StudyFile& study, const std::string& journal_path
     run_batch(study, {*options.only}, 1, options.limits, nullptr, done, nullptr, status, hook, nullptr);
   } else {
     if (options.restart) discard_journal(journal_path);
-    Journal journal(journal_path, ensemble_journal_identity(study, hook));
+    Journal journal(journal_path, ensemble_journal_identity(study, hook, options.shard));
     // A realisation refused by the work limits is run again: this run's limits may differ.
     for (const RealisationRecord& r : journal.recovered())
       if (r.realisation < settings.realisations && in_slice(r.realisation) &&

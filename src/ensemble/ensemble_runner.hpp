@@ -77,11 +77,20 @@ struct EnsembleRun {
 std::uint64_t ensemble_identity_hash(const Study& study);
 
 //! The identity of the journal of `study` (one grid point's study), as run_ensemble opens
-//! it: its hash (with the hook's identity) and "stengmc VERSION (git REV), study FILE".
-JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook = {});
+//! it: its hash (with the hook's identity) and "stengmc VERSION (git REV), study FILE", or
+//! for a `--shard i/n` run "stengmc VERSION (git REV; shard i/n), study FILE". The shard is
+//! in the description only, not the hash: a resume under another slice keeps the records
+//! (each is the same computation whoever ran it) and runs what its own slice still lacks.
+JournalIdentity ensemble_journal_identity(const StudyFile& study, const RealisationHook& hook = {},
+                                          const std::optional<ShardSpec>& shard = std::nullopt);
 
 //! The study file named in the description of an ensemble journal, or "" when it names none.
 std::string journal_study_file(const std::string& description);
+
+//! The shard (--shard i/n) whose run wrote an ensemble journal, from its description;
+//! nullopt for a whole run's journal (and for journals written before stengmc recorded
+//! it). InputError saying what was expected when the description names a shard that is not i/n.
+std::optional<ShardSpec> journal_shard(const std::string& description);
 
 //! The target rule looks at no fewer valid realisations than this: a CI from a handful
 //! can be narrow by chance (or zero-wide for a statistic that has not varied yet).

@@ -32,6 +32,11 @@ PartialSource read_partial_source(const std::string& path) {
   }
   source.identity = scan.contents.study_hash;
   source.study_file = journal_study_file(scan.contents.description);
+  try {
+    source.journal_shard = journal_shard(scan.contents.description);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
   source.records = std::move(scan.contents.records);
   source.skipped_bytes = scan.skipped_bytes;
   source.torn_bytes = scan.torn_bytes;
@@ -66,9 +71,10 @@ std::map<std::size_t, std::map<std::uint64_t, const RealisationRecord*>> finishe
 }
 
 std::vector<std::uint64_t> expected_ids(const PartialSource& source, std::uint64_t realisations) {
+  const std::optional<ShardSpec>& slice = source.shard ? source.shard : source.journal_shard;
   std::vector<std::uint64_t> ids;
   for (std::uint64_t id = 0; id < realisations; ++id)
-    if (!source.shard || source.shard->contains(id)) ids.push_back(id);
+    if (!slice || slice->contains(id)) ids.push_back(id);
   return ids;
 }
 

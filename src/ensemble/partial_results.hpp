@@ -23,6 +23,8 @@ struct PartialSource {
   std::string path;
   bool complete = false;               //!< a finished shard file (else a journal in progress)
   std::optional<ShardSpec> shard;      //!< shard files only
+  //! journals of a `run --shard i/n`: the slice that run owns (its header says which)
+  std::optional<ShardSpec> journal_shard;
   std::uint64_t identity = 0;          //!< shard: the study's identity; journal: its grid point's
   std::string study_file;              //!< as the run was given it ("" when the header names none)
   std::vector<RealisationRecord> records;  //!< ids as stored (shards: g × realisations + r)
@@ -41,8 +43,8 @@ PartialSource read_partial_source(const std::string& path);
 std::map<std::size_t, std::map<std::uint64_t, const RealisationRecord*>> finished_by_point(
     const PartialSource& source, const std::vector<GridPoint>& grid);
 
-//! The ids an unfinished run of `source` is to produce at each grid point: a shard's slice,
-//! every id for a journal.
+//! The ids an unfinished run of `source` is to produce at each grid point: a shard's slice
+//! (a shard file's, or the journal's of a --shard run), every id for a whole run's journal.
 std::vector<std::uint64_t> expected_ids(const PartialSource& source, std::uint64_t realisations);
 
 //! The study `source` ran, read from `study_path` (or, when that is empty, the file its

@@ -134,15 +134,23 @@ std::string missing_text(const std::set<std::uint64_t>& present, std::uint64_t c
   return out;
 }
 
-//! A sweep run SIGKILLed by the test once its first point's journal holds a few records:
-//! status finds the point by the journal's hash (the runner's own, not made by the test)
-//! and lists exactly the ids the journal does not hold.
-TEST(PartialResults, StatusOfARealKilledSweepFindsItsGridPointAndMissingIds) {
-  ScratchDir scratch("partial-status-killed");
-  constexpr int MANY = 3000;  // far more than run before the kill
-  const std::string study = scratch.write("study.toml", distributed_study(MANY, testing::TWO_POINT_SWEEP));
-  const std::string out = scratch.file("killed.h5"), journal = out + ".point0.journal";
-  std::vector<std::string> args{STENGMC_BINARY, "run", study, "-j", "1", "-o", out};
+//! The ids in the journal at `path` (every intact record), or none while it is not there.
+std::set<std::uint64_t> journal_ids(const std::string& path) {
+  std::set<std::uint64_t> ids;
+  try {
+    for (const RealisationRecord& r : scan_journal_file(path, "the journal", "").contents.records) ids.insert(r.realisation);
+  } catch (const std::exception&) {
+    // not there yet
+  }
+  return ids;
+}
+
+//! Starts stengmc with `args` (after the binary), SIGKILLs it once `journal` holds at least
+//! `records` records (or after a minute), and returns the ids the journal holds then; fails
+//! the test if the run ended by itself.
+std::set<std::uint64_t> run_and_kill(std::vector<std::string> args, const std::string& out, const std::string& journal,
+                                     std::size_t records) {
+  args.insert(args.begin(), STENGMC_BINARY);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -151,24 +159,27 @@ TEST(PartialResults, StatusOfARealKilledSweepFindsItsGridPointAndMissingIds) {
   posix_spawn_file_actions_addopen(&actions, 1, (out + ".log").c_str(), O_WRONLY | O_CREAT, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, (out + ".err").c_str(), O_WRONLY | O_CREAT, 0644);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  EXPECT_EQ(posix_spawn(&pid, STENGMC_BINARY, &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  const auto held = [&] {
-    try {
-      return scan_journal_file(journal, "the journal", "").contents.records.size();
-    } catch (const std::exception&) {
-      return std::size_t{0};  // not there yet
-    }
-  };
-  while (std::chrono::steady_clock::now() < deadline && held() < 5) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  while (std::chrono::steady_clock::now() < deadline && journal_ids(journal).size() < records)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ::kill(pid, SIGKILL);
   int wait_status = 0;
   ::waitpid(pid, &wait_status, 0);
-  ASSERT_TRUE(WIFSIGNALED(wait_status)) << "the run ended before it was killed";
+  EXPECT_TRUE(WIFSIGNALED(wait_status)) << "the run ended before it was killed";
+  return journal_ids(journal);
+}
 
-  std::set<std::uint64_t> ids;
-  for (const RealisationRecord& r : scan_journal_file(journal, "the journal", "").contents.records) ids.insert(r.realisation);
+//! A sweep run SIGKILLed by the test once its first point's journal holds a few records:
+//! status finds the point by the journal's hash (the runner's own, not made by the test)
+//! and lists exactly the ids the journal does not hold.
+TEST(PartialResults, StatusOfARealKilledSweepFindsItsGridPointAndMissingIds) {
+  ScratchDir scratch("partial-status-killed");
+  constexpr int MANY = 3000;  // far more than run before the kill
+  const std::string study = scratch.write("study.toml", distributed_study(MANY, testing::TWO_POINT_SWEEP));
+  const std::string out = scratch.file("killed.h5"), journal = out + ".point0.journal";
+  const std::set<std::uint64_t> ids = run_and_kill({"run", study, "-j", "1", "-o", out}, out, journal, 5);
   ASSERT_GE(ids.size(), 5u);
   const auto status = run_cli("status " + journal, scratch);
   ASSERT_EQ(status.exit_code, 0) << status.output;
@@ -178,10 +189,55 @@ TEST(PartialResults, StatusOfARealKilledSweepFindsItsGridPointAndMissingIds) {
       << status.output;
   EXPECT_NE(status.output.find("missing: " + missing_text(ids, MANY) + "\n"), std::string::npos) << status.output;
 
-  // Grid point 2 has nothing yet: an ensemble file needs every point, so --partial refuses.
+  // Grid point 2 has nothing yet: an ensemble file needs every point, so --partial refuses,
+  // naming that point (and only that one) and writing nothing.
   const auto refused = run_cli("merge --partial " + journal + " -o " + scratch.file("p.h5"), scratch);
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
-  EXPECT_NE(refused.output.find("grid point 2 of 2"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("grid point 2 (count = 5) of 2 in " + study), std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find("grid points"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("nothing was written"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch.file("p.h5")));
+}
+
+//! The journal of a `--shard 1/3` run killed part-way: status counts it against that
+//! shard's share (the ids r with r mod 3 = 1), not every id of the study, and lists as
+//! missing only the share's ids the journal lacks. The expected ids are computed here from
+//! r mod 3 and the records the journal holds.
+TEST(PartialResults, StatusOfAKilledShardRunsJournalCountsOnlyItsShare) {
+  ScratchDir scratch("partial-status-shard-journal");
+  constexpr std::uint64_t MANY = 3000;
+  const std::string study = scratch.write("study.toml", distributed_study(MANY));
+  const std::string out = scratch.file("s1.h5"), journal = out + ".journal";
+  const std::set<std::uint64_t> ids =
+      run_and_kill({"run", study, "--shard", "1/3", "-j", "1", "-o", out}, out, journal, 5);
+  ASSERT_GE(ids.size(), 5u);
+  std::vector<std::uint64_t> missing;
+  std::uint64_t share = 0;
+  for (std::uint64_t id = 0; id < MANY; ++id) {
+    if (id % 3 != 1) continue;
+    ++share;
+    if (!ids.count(id)) missing.push_back(id);
+  }
+  ASSERT_EQ(share, 1000u);
+  for (const std::uint64_t id : ids) ASSERT_EQ(id % 3, 1u) << "shard 1/3 ran realisation " << id;
+
+  const auto status = run_cli("status " + journal, scratch);
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_NE(status.output.find("a journal of shard 1/3's run"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find(std::to_string(ids.size()) + " of 1000 realisations finished (shard 1/3's share)"),
+            std::string::npos)
+      << status.output;
+  // The missing ids are every third, so each is a range of one: the first 40, then the count left.
+  std::string listed;
+  for (std::size_t k = 0; k < 40; ++k) listed += (k ? ", " : "") + std::to_string(missing[k]);
+  listed += ", ... (" + std::to_string(missing.size() - 40) + " more)\n";
+  EXPECT_NE(status.output.find("missing: " + listed), std::string::npos) << status.output;
+
+  // merge --partial takes the shard run's journal as it is: its realisations, nothing else.
+  const auto merged = run_cli("merge --partial " + journal + " -o " + scratch.file("p.h5"), scratch);
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  const Hdf5Reader partial(scratch.file("p.h5"));
+  EXPECT_EQ(partial.vector("/realisations/realisation"), std::vector<double>(ids.begin(), ids.end()));
 }
 
 //! The rows of `name` in `path`, by realisation id.

@@ -79,6 +79,8 @@ COMMANDS = {
     "python3 -m build --no-isolation --wheel":
         "builds in the clone's build-python/ and dist/, which the scratch clone lacks; "
         "Python.PipInstallIntoAVenv runs the same setup.py through pip",
+    "python3 -m build --no-isolation --sdist":
+        "Python.sdist builds the sdist from a copy of the tree and checks and configures it",
     "/usr/bin/python3 scripts/contact_sheet.py build/tests/paper-results build/tests/surface-results "
     "build/tests/ensemble-results build/tests/inverse-demo-results --out results/contact_sheet.png "
     "--thumbnails docs/figures/contact --width 520":
