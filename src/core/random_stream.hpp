@@ -34,6 +34,7 @@ enum class StreamKind : std::uint64_t {
   bootstrap = 7,    //!< bootstrap resampling of ensemble statistics (stats/ensemble_statistics)
   draws = 8,        //!< per-realisation parameter draws of an ensemble ([[ensemble.draw]]; index = the draw)
   onsets = 9,       //!< Model 2 contact onsets of a random surface's asperities ([onset])
+  counterface = 10, //!< the counterface's friction modulation eps_i(t) ([counterface]; index = the asperity)
 };
 
 //! The kind's name, for messages and file attributes ("heights").
