@@ -21,6 +21,8 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::draws: return "draws";
     case StreamKind::onsets: return "onsets";
     case StreamKind::counterface: return "counterface";
+    case StreamKind::lifetimes: return "lifetimes";
+    case StreamKind::wear: return "wear";
   }
   return "unknown";
 }
