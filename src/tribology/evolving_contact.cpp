@@ -174,6 +174,8 @@ bool contact_evolves(const Asperity& a, const Model2Params& params) {
          !a.stiffness_steps.empty();
 }
 
+double largest_stiffness_n_per_m(const Asperity& a) { return a.stiffness_n_per_m * largest_step_factor(a); }
+
 double stiffness_at(const Asperity& a, double t_s) {
   double k = a.stiffness_n_per_m * step_factor_at(a, t_s);
   if (t_s > a.onset_s) k *= 1.0 - a.wear_rate_per_ms * (std::min(t_s, a.release_s) - a.onset_s) / MS;

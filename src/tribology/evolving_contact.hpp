@@ -23,6 +23,10 @@ bool contact_evolves(const Asperity& asperity, const Model2Params& params);
 //! times 1 - w (min(t, release) - onset) / 1 ms from the onset on (k0 before it).
 double stiffness_at(const Asperity& asperity, double t_s);
 
+//! The largest k(t) [N/m] the asperity reaches from its onset on: k0 times the largest
+//! running product of its stiffness steps (wear only lowers k).
+double largest_stiffness_n_per_m(const Asperity& asperity);
+
 //! Integrates the asperity from its onset (t = 0 here is the onset) to `t_end_s` [s] after
 //! it, in the form integrate_model2 returns (knots and RODAS4 pieces, no oscillator pieces).
 //! @throws ModelError if the wear takes k to 0 or below before the release or t_end, on

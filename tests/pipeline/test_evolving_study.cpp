@@ -80,6 +80,10 @@ TEST(EvolvingStudy, BadValuesAreRejectedWithTheirKey) {
   expect(error_of(EVOLVING, "[[5e-6, 1.1], [12e-6, 0.95]]", "[[5e-6, 0]]"), "stiffness_steps", "must be > 0");
   expect(error_of(EVOLVING, "[[5e-6, 1.1], [12e-6, 0.95]]", "[5e-6, 1.1]"), "stiffness_steps", "expected an array of [2 numbers]");
   expect(error_of(EVOLVING, "[[5e-6, 1.1], [12e-6, 0.95]]", "[[5e-6, 1.1, 3]]"), "stiffness_steps", "of 3 entries");
+  // A step that lifts the line above Nyquist: k = 100 N/m x 4 rings at 3.18 MHz, beyond 5 MHz / 2.
+  std::string slow = EVOLVING;
+  slow.replace(slow.find("sample_rate_hz = 100e6"), 22, "sample_rate_hz = 5e6");
+  expect(error_of(slow, "[[5e-6, 1.1], [12e-6, 0.95]]", "[[5e-6, 4]]"), "sample_rate_hz", "below twice the highest natural frequency");
   std::string model1 = EVOLVING;
   auto remove = [&model1](const std::string& what, const std::string& by = "") {
     model1.replace(model1.find(what), what.size(), by);
