@@ -143,7 +143,8 @@ void run_ensemble_study(const StudyFile& study, const std::string& out_option, b
                                    static_cast<unsigned long long>(options.shard->index));
     if (process_world().distributed())
       std::printf("  %d MPI processes\n", process_world().size);
-    if (!study.surface->random_surface() && !study.noise)
+    // A [counterface] modulation is random too: its own stream per realisation and asperity.
+    if (!study.surface->random_surface() && !study.noise && !study.model2.counterface.active())
       std::printf("NOTE: the study's surface is a fixed list and it has no [noise]: nothing is random, every realisation "
                   "is the same run and the intervals have zero width\n");
   }

@@ -20,6 +20,9 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::bootstrap: return "bootstrap";
     case StreamKind::draws: return "draws";
     case StreamKind::onsets: return "onsets";
+    case StreamKind::counterface: return "counterface";
+    case StreamKind::lifetimes: return "lifetimes";
+    case StreamKind::wear: return "wear";
   }
   return "unknown";
 }

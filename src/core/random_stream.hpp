@@ -34,6 +34,9 @@ enum class StreamKind : std::uint64_t {
   bootstrap = 7,    //!< bootstrap resampling of ensemble statistics (stats/ensemble_statistics)
   draws = 8,        //!< per-realisation parameter draws of an ensemble ([[ensemble.draw]]; index = the draw)
   onsets = 9,       //!< Model 2 contact onsets of a random surface's asperities ([onset])
+  counterface = 10, //!< the counterface's friction modulation eps_i(t) ([counterface]; index = the asperity)
+  lifetimes = 11,   //!< Model 2 contact lifetimes (release - onset) of a random surface's asperities ([lifetime])
+  wear = 12,        //!< Model 2 wear rates of a random surface's asperities ([wear])
 };
 
 //! The kind's name, for messages and file attributes ("heights").

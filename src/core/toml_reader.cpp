@@ -274,6 +274,37 @@ std::vector<double> TomlTable::number_list(std::string_view key) {
   return out;
 }
 
+std::vector<std::vector<double>> TomlTable::number_rows(std::string_view key, std::size_t width) {
+  std::vector<std::vector<double>> out;
+  const toml::node* node = node_of(lookup(key));
+  if (!node) return out;
+  const auto* array = node->as_array();
+  const std::string expected = "expected an array of [" + std::to_string(width) + " numbers] arrays";
+  if (!array) fail(key, "is " + describe(*node) + "; " + expected);
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const auto* row = (*array)[i].as_array();
+    if (!row || row->size() != width)
+      fail(key, "[" + std::to_string(i) + "] is " + describe((*array)[i]) + (row ? " of " + std::to_string(row->size()) + " entries" : "") +
+                    "; " + expected);
+    std::vector<double> values;
+    for (std::size_t j = 0; j < width; ++j) {
+      const toml::node& item = (*row)[j];
+      double value = 0.0;
+      if (const auto* integer = item.as_integer()) {
+        value = static_cast<double>(integer->get());
+      } else if (const auto* floating = item.as_floating_point()) {
+        value = floating->get();
+      } else {
+        fail(key, "[" + std::to_string(i) + "][" + std::to_string(j) + "] is " + describe(item) + "; expected a number");
+      }
+      if (!std::isfinite(value)) fail(key, "[" + std::to_string(i) + "][" + std::to_string(j) + "] is not a finite number");
+      values.push_back(value);
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
 std::vector<std::string> TomlTable::string_list(std::string_view key, const std::vector<std::string_view>& allowed) {
   std::vector<std::string> out;
   const toml::node* node = node_of(lookup(key));

@@ -41,6 +41,9 @@ class TomlTable {
   }
   //! An array of finite numbers (integers or floats), empty when absent.
   std::vector<double> number_list(std::string_view key);
+  //! An array of arrays of finite numbers, each of `width` entries (`[[1e-6, 0.9], ...]`),
+  //! empty when absent.
+  std::vector<std::vector<double>> number_rows(std::string_view key, std::size_t width);
   //! An array of strings, each one of `allowed`, or any when `allowed` is empty (empty when absent).
   std::vector<std::string> string_list(std::string_view key, const std::vector<std::string_view>& allowed);
   //! A free string; `fallback` when absent.

@@ -149,6 +149,8 @@ constexpr std::array TERMS{
     Term{"*/summits/y_m", "m", "summit y position", "summit"},
     Term{"*/summits/drive_phase_rad", "rad", "summit drive phase", "summit"},
     Term{"*/summits/onset_s", "s", "summit contact onset", "summit"},
+    Term{"*/summits/lifetime_s", "s", "summit contact lifetime (release - onset)", "summit"},
+    Term{"*/summits/wear_rate_per_ms", "1/ms", "summit stiffness wear rate", "summit"},
     Term{"*/summits/normal_load_n", "N", "summit normal load", "summit"},
     Term{"*/summits/sampled_stiffness_n_per_m", "N/m", "sampled tangential stiffness", "summit"},
     Term{"*/summits/interference_m", "m", "summit interference", "summit"},

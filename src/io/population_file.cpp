@@ -114,6 +114,11 @@ void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Populati
   };
   if (std::any_of(pops.begin(), pops.end(), has_onset))
     f.write(g + "/summits/onset_s", concatenated(pops, [](const Population& p) { return &p.onset_s; }));
+  // Likewise the evolving contact's draws ([lifetime], [wear]).
+  if (!pops.empty() && !pops.front().lifetime_s.empty())
+    f.write(g + "/summits/lifetime_s", concatenated(pops, [](const Population& p) { return &p.lifetime_s; }));
+  if (!pops.empty() && !pops.front().wear_rate_per_ms.empty())
+    f.write(g + "/summits/wear_rate_per_ms", concatenated(pops, [](const Population& p) { return &p.wear_rate_per_ms; }));
   if (sampled)
     f.write(g + "/summits/sampled_stiffness_n_per_m",
             concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }));

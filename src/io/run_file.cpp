@@ -26,6 +26,12 @@ void write_model(Hdf5Writer& file, const Study& study) {
                    "tangential force the asperity transmits: mu_k N sign(x') sliding, k (x0 - x) stuck (MODEL.md 1)");
   } else {
     write_settings(file, "/model", model2_settings(study.model2));
+    // The counterface's modulation (docs/model.md §1.4), only where there is one: a run
+    // without it writes the file it always wrote.
+    if (study.model2.counterface.active()) {
+      file.group("/counterface");
+      write_settings(file, "/counterface", counterface_settings(study.model2.counterface));
+    }
     file.attribute("/model", "friction_convention", "F(v_r), the belt's friction force on the asperity, v_r = v_b - x' (MODEL.md 1)");
   }
 }

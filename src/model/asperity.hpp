@@ -1,5 +1,7 @@
 #pragma once
 //! One asperity in contact: its mechanics and its S-TENG element (MODEL.md §1, §2).
+#include <limits>
+#include <vector>
 
 namespace stengmc {
 
@@ -9,6 +11,13 @@ struct StengElement {
   double effective_thickness_m = 50e-6;    //!< d0 = d1/eps_r1 + d2/eps_r2 [m]
   double width_m = 10e-6;                  //!< w, dielectric width [m]
   double length_m = 10e-6;                 //!< l, dielectric length; the element needs x < l [m]
+};
+
+//! A step change of an asperity's stiffness (docs/model.md §1.4): from `time_s` on, k is
+//! multiplied by `factor`.
+struct StiffnessStep {
+  double time_s = 0.0;   //!< when [s]
+  double factor = 1.0;   //!< k after / k before [-], > 0
 };
 
 //! Mechanical parameters of one asperity and its element (paper Tables 1, 2).
@@ -23,6 +32,14 @@ struct Asperity {
   //! Model 2: when it comes into contact [s]; before, at rest at x(0) and carried by nothing
   //! (its element stays in the circuit).
   double onset_s = 0.0;
+  //! Model 2: when it leaves contact [s] (> onset_s): no load, no friction after it, it rings
+  //! freely towards rest (its element stays in the circuit); infinity: never.
+  double release_s = std::numeric_limits<double>::infinity();
+  //! Model 2: w, wear of the stiffness per millisecond in contact [1/ms]:
+  //! k(t) = k0 (1 - w (t - onset) / 1 ms) until the release, frozen after it.
+  double wear_rate_per_ms = 0.0;
+  //! Model 2: step changes of k, in time (docs/model.md §1.4); none by default.
+  std::vector<StiffnessStep> stiffness_steps;
   StengElement element;                      //!< its S-TENG element
 };
 

@@ -218,13 +218,15 @@ RunResult run_study(const Study& study, const RunOptions& options) {
         t.motion->sample(times, true, samples);
         result.statistics[i] = statistics_of(rule, t.x_m, t.v_m_per_s, !t.events.empty());
       } else {
-        Model2Solution solution = solve_model2_motion(a, study.model2, t_end);
+        // The counterface's modulation of asperity i: its own stream (seed, realisation, i).
+        const CounterfaceStream stream{study.seed, study.realisation, i};
+        Model2Solution solution = solve_model2_motion(a, study.model2, t_end, stream);
         t.solver_steps = solution.accepted_steps;
         t.rejected_steps = solution.rejected_steps;
         solution.motion->sample(times, true, samples);
         t.events = std::move(solution.events);
         t.motion = std::move(solution.motion);
-        if (keep.friction) model2_friction_trace(a, study.model2, times, samples.v_m_per_s, t.friction_n);
+        if (keep.friction) model2_friction_trace(a, study.model2, times, samples.v_m_per_s, t.friction_n, stream);
         check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
         result.statistics[i] = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
         if (keep.x) t.x_m = samples.x_m;

@@ -100,6 +100,11 @@ Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> 
   study.duration_s = root.positive("duration_s", 0.0);
   study.sample_rate_hz = root.positive("sample_rate_hz", 0.0);
   read_model(root, study);
+  if (auto counterface = root.table("counterface")) {
+    if (study.model != ModelKind::model2)
+      counterface->fail("friction_modulation_rms", "[counterface] modulates Model 2's belt friction; [model] kind is \"model1\"");
+    study.model2.counterface = read_counterface(*counterface, study.model2.belt_velocity_m_per_s);
+  }
   read_surface(root, study, surface_overrides);
   read_circuit(root, study);
   if (auto domain = root.table("domain")) {
@@ -136,6 +141,13 @@ Study parse_study_document(TomlDocument& document, std::optional<std::uint64_t> 
         root.table("model")->fail("kind", "= \"model1\": asperity " + std::to_string(i + 1) + " has onset_s = " +
                                               format_number(study.asperities[i].onset_s) +
                                               " s; a contact onset is a Model 2 key (Model 1's drive acts from t = 0)");
+    for (std::size_t i = 0; i < study.asperities.size(); ++i) {
+      const Asperity& a = study.asperities[i];
+      if (std::isfinite(a.release_s) || a.wear_rate_per_ms != 0.0 || !a.stiffness_steps.empty())
+        root.table("model")->fail("kind", "= \"model1\": asperity " + std::to_string(i + 1) +
+                                              " has release_s, wear_rate_per_ms or stiffness_steps; an evolving "
+                                              "contact is a Model 2 key (docs/model.md §1.4)");
+    }
     const double periods = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI) * study.duration_s;
     if (!(periods <= MAX_DRIVE_PERIODS))
       root.table("model")->fail("drive_frequency_hz",

@@ -6,6 +6,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "tribology/evolving_contact.hpp"
 
 namespace stengmc {
 
@@ -38,7 +39,8 @@ void check_sample_rate(const Study& study, TomlTable* root) {
   std::size_t which = 0;
   for (std::size_t i = 0; i < study.asperities.size(); ++i) {
     const Asperity& a = study.asperities[i];
-    const double f = std::sqrt(a.stiffness_n_per_m / a.mass_kg) / (2.0 * PI);
+    // Its highest line: a stiffness step may raise k above k0 (docs/model.md §1.4).
+    const double f = std::sqrt(largest_stiffness_n_per_m(a) / a.mass_kg) / (2.0 * PI);
     if (f > highest_hz) {
       highest_hz = f;
       which = i;

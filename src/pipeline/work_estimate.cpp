@@ -7,6 +7,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "tribology/counterface.hpp"
 
 namespace stengmc {
 
@@ -61,10 +62,18 @@ void add_tribology(const Study& study, double n, double samples, double natural_
   const double per_asperity =
       std::min(MODEL2_MAX_STEPS, std::max(MODEL2_MIN_STEPS, periods * MODEL2_STEPS_PER_PERIOD *
                                                                  std::pow(1e-8 / study.model2.relative_tolerance, 0.25)));
+  double per_asperity_steps = per_asperity;
+  // A modulated friction (docs/model.md §1.4) takes at least one step per node of eps's grid.
+  if (study.model2.counterface.active() && natural_hz > 0.0)
+    per_asperity_steps = std::min(MODEL2_MAX_STEPS,
+        std::max(per_asperity, duration / modulation_step_s(correlation_time_s(study.model2.counterface,
+                                                                               study.model2.belt_velocity_m_per_s),
+                                                            2.0 * PI * natural_hz)));
   e.events = n * (EVENTS_PER_PERIOD * periods + 4.0);
-  e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity) + " steps", n * per_asperity);
-  e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity) + " steps",
-               n * per_asperity * MODEL2_BYTES_PER_STEP);
+  e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
+              n * per_asperity_steps);
+  e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
+               n * per_asperity_steps * MODEL2_BYTES_PER_STEP);
   e.add_memory(std::string("~") + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
 }
 

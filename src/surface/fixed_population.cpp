@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/format.hpp"
 #include "model/asperity.hpp"
 
 namespace stengmc {
@@ -28,6 +29,36 @@ Asperity read_asperity(TomlTable& table, const Asperity& base) {
   if (!std::isfinite(a.onset_s)) table.fail("onset_s", "must be a finite time >= 0 [s]");
   if (a.onset_s > 0.0 && a.initial_velocity_m_per_s != 0.0)
     table.fail("onset_s", "> 0 means the asperity is at rest until its onset: initial_velocity_m_per_s must be 0");
+  // The evolving contact (docs/model.md §1.4).
+  if (table.has("release_s")) {
+    a.release_s = table.number("release_s", base.release_s);
+    if (!(a.release_s > a.onset_s))
+      table.fail("release_s", "= " + format_number(a.release_s) + " must be a finite time > onset_s = " +
+                                  format_number(a.onset_s) + " [s] (leave it out: never released)");
+  } else if (!(base.release_s > a.onset_s)) {
+    table.fail("onset_s", "= " + format_number(a.onset_s) + " must be < the defaults' release_s = " +
+                              format_number(base.release_s) + " [s]");
+  }
+  a.wear_rate_per_ms = table.non_negative("wear_rate_per_ms", base.wear_rate_per_ms);
+  if (!(a.wear_rate_per_ms < 1e3))
+    table.fail("wear_rate_per_ms", "= " + format_number(a.wear_rate_per_ms) +
+                                       " must be < 1000 per ms (the stiffness would vanish within a microsecond)");
+  if (table.has("stiffness_steps")) {
+    a.stiffness_steps.clear();
+    for (const std::vector<double>& row : table.number_rows("stiffness_steps", 2)) {
+      const StiffnessStep step{row[0], row[1]};
+      if (!(step.time_s >= 0.0))
+        table.fail("stiffness_steps", "has a step at t = " + format_number(step.time_s) + " s; expected [t_s >= 0, factor]");
+      if (!(step.factor > 0.0))
+        table.fail("stiffness_steps", "has factor = " + format_number(step.factor) + " at t = " +
+                                          format_number(step.time_s) + " s; a factor (k after / k before) must be > 0");
+      if (!a.stiffness_steps.empty() && !(step.time_s > a.stiffness_steps.back().time_s))
+        table.fail("stiffness_steps", "has t = " + format_number(step.time_s) + " s after t = " +
+                                          format_number(a.stiffness_steps.back().time_s) +
+                                          " s; steps must be listed in increasing time");
+      a.stiffness_steps.push_back(step);
+    }
+  }
   a.element.charge_density_c_per_m2 = table.number("charge_density_c_per_m2", base.element.charge_density_c_per_m2);
   a.element.effective_thickness_m = table.positive("effective_thickness_m", base.element.effective_thickness_m);
   a.element.width_m = table.positive("width_m", base.element.width_m);

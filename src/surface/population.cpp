@@ -77,6 +77,16 @@ void draw_onsets(const RandomSurface& s, std::uint64_t seed, std::uint64_t reali
   for (double& t : p.onset_s) t = s.onset->sample(engine);
 }
 
+//! One draw per summit from `law` on its own stream, or nothing without a law.
+void draw_per_summit(const std::optional<Distribution>& law, StreamKind kind, std::uint64_t seed,
+                     std::uint64_t realisation, std::size_t n, std::vector<double>& out) {
+  out.clear();
+  if (!law) return;
+  RandomEngine engine = random_stream(seed, realisation, kind);
+  out.resize(n);
+  for (double& v : out) v = law->sample(engine);
+}
+
 void draw_phases(const RandomSurface& s, std::uint64_t seed, std::uint64_t realisation, Population& p, std::size_t n) {
   p.drive_phase_rad.assign(n, s.phase_rad);
   if (s.phase_rule != PhaseRule::uniform) return;
@@ -170,6 +180,14 @@ Asperity make_asperity(const RandomSurface& s, const Population& p, std::size_t 
   a.height_m = p.height_m[i];
   a.drive_phase_rad = p.drive_phase_rad[i];
   a.onset_s = p.onset_s[i];
+  if (!p.lifetime_s.empty()) {
+    a.release_s = a.onset_s + p.lifetime_s[i];
+    // A lifetime of 0 (a law reaching down to 0, drawn at exactly 0) is no contact at all.
+    if (!(a.release_s > a.onset_s))
+      throw ModelError("realisation " + std::to_string(p.realisation) + ", summit " + std::to_string(i + 1) +
+                       ": contact lifetime " + format_number(p.lifetime_s[i]) + " s leaves no time in contact");
+  }
+  if (!p.wear_rate_per_ms.empty()) a.wear_rate_per_ms = p.wear_rate_per_ms[i];
   a.element = s.element;
   const double patch = p.contact ? p.contact->patch_radius_m[i] : 0.0;
   if (s.geometry_rule == GeometryRule::patch) a.element.length_m = a.element.width_m = std::sqrt(PI) * patch;
@@ -195,6 +213,8 @@ Population sample_population(const RandomSurface& surface, std::uint64_t seed, s
   draw_positions(surface, seed, realisation, p, n);
   draw_phases(surface, seed, realisation, p, n);
   draw_onsets(surface, seed, realisation, p, n);
+  draw_per_summit(surface.lifetime, StreamKind::lifetimes, seed, realisation, n, p.lifetime_s);
+  draw_per_summit(surface.wear_rate, StreamKind::wear, seed, realisation, n, p.wear_rate_per_ms);
   solve_contact(surface, p);
   for (std::size_t i = 0; i < n; ++i) {
     if (!(p.load_n[i] > 0.0)) continue;

@@ -38,6 +38,8 @@ struct Population {
   std::vector<double> sampled_stiffness_n_per_m;  //!< drawn k_i (sampled rule; empty under mindlin) [N/m]
   std::vector<double> drive_phase_rad;       //!< phi_i [rad]
   std::vector<double> onset_s;               //!< Model 2 contact onsets t_on,i [s] (all 0 without an [onset] law)
+  std::vector<double> lifetime_s;            //!< Model 2 contact lifetimes t_off,i - t_on,i [s] (empty without a [lifetime] law)
+  std::vector<double> wear_rate_per_ms;      //!< Model 2 wear rates w_i [1/ms] (empty without a [wear] law)
   std::vector<double> load_n;                //!< N_i per summit (0 = not in contact) [N]
   std::optional<PopulationContact> contact;  //!< with material data
   //! The asperities a run simulates: the summits in contact, in summit order.

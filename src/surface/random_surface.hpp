@@ -106,6 +106,11 @@ struct RandomSurface {
   double phase_rad = 0.0;                   //!< fixed drive phase [rad]
   //! Model 2 contact onsets [s], one draw per summit (the onsets stream); none: all at t = 0.
   std::optional<Distribution> onset;
+  //! Model 2 contact lifetimes t_off - t_on [s], one draw per summit (the lifetimes stream);
+  //! none: never released (docs/model.md §1.4).
+  std::optional<Distribution> lifetime;
+  //! Model 2 wear rates w [1/ms], one draw per summit (the wear stream); none: no wear.
+  std::optional<Distribution> wear_rate;
 
   //! Mean number of summits per realisation (Poisson mean or the fixed count).
   [[nodiscard]] double mean_summit_count() const;

@@ -268,6 +268,24 @@ RandomSurface read_random_surface(TomlTable& root, const std::filesystem::path& 
     if (!std::isfinite(s.onset->upper()) && s.onset->quantile(1.0 - 1e-12) > 1e3)
       onset->fail("kind", "draws onsets beyond 1000 s: give the law in seconds");
   }
+  // The evolving contact's laws (docs/model.md §1.4).
+  if (auto lifetime = root.table("lifetime")) {
+    s.lifetime = Distribution::from_toml(*lifetime, base_dir);
+    if (!(s.lifetime->lower() >= 0.0))
+      lifetime->fail("kind", "can draw lifetimes below 0 s (from " + format_number(s.lifetime->lower()) +
+                                 " s): a contact lasts a time > 0 (truncate with min = 0)");
+    if (!std::isfinite(s.lifetime->upper()) && s.lifetime->quantile(1.0 - 1e-12) > 1e3)
+      lifetime->fail("kind", "draws lifetimes beyond 1000 s: give the law in seconds");
+  }
+  if (auto wear = root.table("wear")) {
+    s.wear_rate = Distribution::from_toml(*wear, base_dir);
+    if (!(s.wear_rate->lower() >= 0.0))
+      wear->fail("kind", "can draw wear rates below 0 (from " + format_number(s.wear_rate->lower()) +
+                             " per ms): wear only lowers the stiffness (truncate with min = 0)");
+    if (!(s.wear_rate->upper() < 1e3))
+      wear->fail("kind", "can draw wear rates of 1000 per ms or more (up to " + format_number(s.wear_rate->upper()) +
+                             "): give the law in fractions of k per ms, bounded (e.g. kind = \"uniform\", max = 0.3)");
+  }
   return s;
 }
 

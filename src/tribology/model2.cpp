@@ -9,6 +9,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "model/delayed_motion.hpp"
+#include "tribology/evolving_contact.hpp"
 #include "tribology/model2_motion.hpp"
 #include "tribology/model2_integrator.hpp"
 
@@ -25,14 +26,23 @@ double damped_natural_frequency_hz(double stiffness_n_per_m, double mass_kg, dou
   return std::sqrt(stiffness_n_per_m / mass_kg) * std::sqrt(1.0 - zeta * zeta) / (2.0 * PI);
 }
 
-Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params& params, double t_end_s) {
+Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params& params, double t_end_s,
+                                   const CounterfaceStream& stream) {
   const double onset = std::clamp(asperity.onset_s, 0.0, std::max(t_end_s, 0.0));
-  Model2Integration integration = integrate_model2(asperity, params, t_end_s - onset);
+  const bool evolves = contact_evolves(asperity, params);
+  Model2Integration integration;
+  if (evolves) {
+    integrate_evolving_contact(asperity, params, t_end_s - onset, stream, integration);
+  } else {
+    integrate_model2(asperity, params, t_end_s - onset, integration);
+  }
   Model2Solution out;
   out.accepted_steps = integration.accepted_steps;
   out.rejected_steps = integration.rejected_steps;
   auto motion = std::make_unique<Model2Motion>(std::move(integration));
   out.events = motion->relative_velocity_events(params.belt_velocity_m_per_s);
+  if (evolves && std::isfinite(asperity.release_s))
+    std::erase_if(out.events, [&](const Event& e) { return e.time_s >= asperity.release_s - onset; });
   if (onset > 0.0) {
     for (Event& e : out.events) e.time_s += onset;
     out.motion = std::make_unique<DelayedMotion>(std::move(motion), onset, asperity.initial_displacement_m);
@@ -43,7 +53,8 @@ Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params&
 }
 
 void model2_friction_trace(const Asperity& asperity, const Model2Params& params, std::span<const double> times_s,
-                           std::span<const double> velocities_m_per_s, std::vector<double>& friction_n) {
+                           std::span<const double> velocities_m_per_s, std::vector<double>& friction_n,
+                           const CounterfaceStream& stream) {
   const StribeckFriction friction(params, asperity.normal_load_n);
   friction_n.resize(velocities_m_per_s.size());
   // v_r first, then F in place, in one batch (the law's formula inlined in its loop).
@@ -51,6 +62,14 @@ void model2_friction_trace(const Asperity& asperity, const Model2Params& params,
   friction.forces(friction_n.data(), friction_n.data(), friction_n.size());
   if (asperity.onset_s > 0.0)
     for (std::size_t j = 0; j < friction_n.size() && times_s[j] < asperity.onset_s; ++j) friction_n[j] = 0.0;
+  if (params.counterface.active()) {
+    std::vector<double> factor;
+    modulation_factors(asperity, params, stream, times_s.first(friction_n.size()), factor);
+    for (std::size_t j = 0; j < friction_n.size(); ++j) friction_n[j] *= factor[j];
+  }
+  if (std::isfinite(asperity.release_s))
+    for (std::size_t j = 0; j < friction_n.size(); ++j)
+      if (times_s[j] > asperity.release_s) friction_n[j] = 0.0;
 }
 
 Trajectory solve_model2(const Asperity& asperity, const Model2Params& params, const TimeGrid& grid) {

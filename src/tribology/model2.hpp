@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "model/asperity.hpp"
+#include "tribology/counterface.hpp"
 #include "tribology/friction.hpp"
 #include "tribology/friction_law.hpp"
 #include "tribology/time_grid.hpp"
@@ -33,6 +34,8 @@ struct Model2Params {
   //! false: RODAS4 alone, the method before issue 12. Not a study key: benchmarks and
   //! tests compare the two.
   bool sliding_propagator = true;
+  //! The counterface's friction modulation (`[counterface]`, docs/model.md §1.4); none by default.
+  CounterfaceParams counterface;
 };
 
 //! Friction force F(v_r) on the asperity [N] for relative velocity v_r = v_b - x' [m/s].
@@ -59,13 +62,19 @@ struct Model2Solution {
 
 //! Integrates from the asperity's contact onset (`onset_s`, clamped to t_end_s), at rest at
 //! its initial displacement before it: the motion from the onset is the one from t = 0
-//! shifted (the equation does not hold t).
-Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params& params, double t_end_s);
+//! shifted (the equation holds t only through the evolving contact below).
+//! A contact that evolves (contact_evolves: counterface modulation, release, wear,
+//! stiffness steps; docs/model.md §1.4) is integrated by integrate_evolving_contact, its
+//! modulation drawn from `stream`; any other by integrate_model2, as before. Overtakes and
+//! regrips after the release (no contact) are not events.
+Model2Solution solve_model2_motion(const Asperity& asperity, const Model2Params& params, double t_end_s,
+                                   const CounterfaceStream& stream = {});
 
-//! Friction on the grid from the sampled velocities: F(v_b - x'), and 0 before the onset
-//! (carried by nothing), into `friction_n` (resized).
+//! Friction on the grid from the sampled velocities: F(v_b - x') (1 + eps(t)), 0 before the
+//! onset and after the release (carried by nothing), into `friction_n` (resized).
 void model2_friction_trace(const Asperity& asperity, const Model2Params& params, std::span<const double> times_s,
-                           std::span<const double> velocities_m_per_s, std::vector<double>& friction_n);
+                           std::span<const double> velocities_m_per_s, std::vector<double>& friction_n,
+                           const CounterfaceStream& stream = {});
 
 //! Damped natural frequency f = sqrt(k/m) sqrt(1 - zeta^2) / 2 pi, zeta = c / (2 sqrt(k m)) [Hz].
 double damped_natural_frequency_hz(double stiffness_n_per_m, double mass_kg, double damping_n_s_per_m);

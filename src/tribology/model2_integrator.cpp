@@ -11,34 +11,18 @@
 
 #include "core/error.hpp"
 #include "tribology/model2_scaled_system.hpp"
+#include "tribology/rodas4.hpp"
 #include "tribology/sliding_propagator.hpp"
 
 namespace stengmc {
 namespace {
 
 
-// RODAS4: the 6-stage, order 4(3), L-stable and stiffly accurate Rosenbrock method of
-// E. Hairer and G. Wanner, "Solving Ordinary Differential Equations II", 2nd ed., Springer
-// 1996, Sec. VI.4 (coefficients of their code rodas.f, METH = 1; Boost.Odeint's
-// rosenbrock4 uses the same set). Written in the "g" form of rodas.f:
-//   (I/(gamma h) - J) g_i = f(y + sum_j a_ij g_j) + sum_j (c_ij / h) g_j,
-//   y1 = y + sum_j a_5j g_j + g_5 + g_6, error estimate = g_6.
-// The system is autonomous, so the d_i (df/dt) terms vanish and the c_i are not needed.
-// L-stability matters here: in the sticking phase h |lambda| reaches 1e3..1e5 and an
-// A-stable-only method (R(inf) != 0) would leave the stiff component ringing.
-constexpr double GAMMA = 0.25;
-constexpr double A21 = 1.544;
-constexpr double A31 = 0.9466785280815826, A32 = 0.2557011698983284;
-constexpr double A41 = 3.314825187068521, A42 = 2.896124015972201, A43 = 0.9986419139977817;
-constexpr double A51 = 1.221224509226641, A52 = 6.019134481288629, A53 = 12.53708332932087,
-                 A54 = -0.6878860361058950;
-constexpr double C21 = -5.6688;
-constexpr double C31 = -2.430093356833875, C32 = -0.2063599157091915;
-constexpr double C41 = -0.1073529058151375, C42 = -9.594562251023355, C43 = -20.47028614809616;
-constexpr double C51 = 7.496443313967647, C52 = -10.24680431464352, C53 = -33.99990352819905,
-                 C54 = 11.70890893206160;
-constexpr double C61 = 8.083246795921522, C62 = -7.981132988064893, C63 = -31.52159432874371,
-                 C64 = 16.31930543123136, C65 = -6.058818238834054;
+// RODAS4 (rodas4.hpp). The system is autonomous, so the D_i (df/dt) terms vanish and
+// the stage times are not needed. L-stability matters here: in the sticking phase
+// h |lambda| reaches 1e3..1e5 and an A-stable-only method (R(inf) != 0) would leave the
+// stiff component ringing.
+using namespace rodas4;
 
 // Step-size control of rodas.f: h_new = h / clamp(err^(1/4) / SAFE, 1/MAX_GROWTH, MAX_SHRINK),
 // with Gustafsson's predictive controller after accepted steps.

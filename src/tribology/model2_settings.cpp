@@ -1,5 +1,7 @@
 #include "tribology/model2_settings.hpp"
 
+#include <cmath>
+
 #include "core/format.hpp"
 #include "tribology/friction_settings.hpp"
 
@@ -41,6 +43,32 @@ std::vector<Setting> model2_settings(const Model2Params& p) {
                                    {"friction_form", std::string(p.friction_law->name)},
                                    {"relative_tolerance", p.relative_tolerance}});
   return settings;
+}
+
+CounterfaceParams read_counterface(TomlTable& table, double belt_velocity_m_per_s) {
+  CounterfaceParams c;
+  c.friction_modulation_rms = table.non_negative("friction_modulation_rms", c.friction_modulation_rms);
+  if (!(c.friction_modulation_rms <= MAX_FRICTION_MODULATION_RMS))
+    table.fail("friction_modulation_rms", "= " + format_number(c.friction_modulation_rms) + " must be <= " +
+                                              format_number(MAX_FRICTION_MODULATION_RMS) +
+                                              " (a larger modulation makes the friction reverse, 1 + eps < 0, too often)");
+  if (!table.has("correlation_length_m")) {
+    if (c.active())
+      table.fail("correlation_length_m", "is missing: friction_modulation_rms > 0 needs the counterface's correlation "
+                                         "length lambda [m] (e.g. 1e-6)");
+  } else {
+    c.correlation_length_m = table.positive("correlation_length_m", c.correlation_length_m);
+    if (!std::isfinite(c.correlation_length_m))
+      table.fail("correlation_length_m", "must be a finite length > 0 [m]");
+  }
+  if (c.active() && belt_velocity_m_per_s == 0.0)
+    table.fail("friction_modulation_rms", "> 0 needs a moving belt: [model] belt_velocity_m_per_s = 0 leaves the "
+                                          "counterface still (an infinite correlation time)");
+  return c;
+}
+
+std::vector<Setting> counterface_settings(const CounterfaceParams& c) {
+  return {{"friction_modulation_rms", c.friction_modulation_rms}, {"correlation_length_m", c.correlation_length_m}};
 }
 
 }  // namespace stengmc

@@ -16,4 +16,11 @@ Model2Params read_model2_params(TomlTable& model);
 //! Every key with its value, in the order study files list them.
 std::vector<Setting> model2_settings(const Model2Params& params);
 
+//! A study's `[counterface]` table (docs/study-files.md): InputError names the key.
+//! `belt_velocity_m_per_s` is Model 2's: a modulation needs a moving belt.
+CounterfaceParams read_counterface(TomlTable& counterface, double belt_velocity_m_per_s);
+
+//! `[counterface]`'s keys with their values.
+std::vector<Setting> counterface_settings(const CounterfaceParams& counterface);
+
 }  // namespace stengmc

@@ -327,6 +327,45 @@ TEST(PopulationSampling, OnsetsFollowTheirLawFromAStreamOfTheirOwn) {
   EXPECT_THROW(read_surface(LIGHT + "[onset]\nkind = \"normal\"\nmean = 5e-6\nstd = 1e-6\n"), InputError);
 }
 
+TEST(PopulationSampling, LifetimesAndWearRatesFollowTheirLawsFromStreamsOfTheirOwn) {
+  // [lifetime] exponential (gamma, shape 1) of mean 2 ms and [wear] uniform on [0, 0.3] per ms
+  // (docs/model.md §1.4): every asperity's release is its onset plus its summit's lifetime
+  // and it carries its summit's wear rate; the draws have the laws' means (4 standard
+  // errors: scale / sqrt(n) and 0.3 / sqrt(12 n)); nothing else moves (their own streams);
+  // the same (seed, realisation) draws the same bits.
+  const std::string onset = "[onset]\nkind = \"uniform\"\nmin = 0\nmax = 1e-3\n";
+  const RandomSurface plain = read_surface(LIGHT + onset);
+  const RandomSurface evolving = read_surface(LIGHT + onset + "[lifetime]\nkind = \"gamma\"\nshape = 1\nscale = 2e-3\n" +
+                                              "[wear]\nkind = \"uniform\"\nmin = 0\nmax = 0.3\n");
+  std::vector<double> lifetimes, wear;
+  for (std::uint64_t r = 0; r < 30; ++r) {
+    const Population p = sample_population(plain, SEED, r), q = sample_population(evolving, SEED, r);
+    EXPECT_TRUE(same_bits(p.height_m, q.height_m));
+    EXPECT_TRUE(same_bits(p.onset_s, q.onset_s));
+    EXPECT_TRUE(same_bits(q.lifetime_s, sample_population(evolving, SEED, r).lifetime_s));
+    for (std::size_t i = 0; i < q.asperities.size(); ++i) {
+      const std::size_t summit = q.summit_of_asperity[i];
+      EXPECT_EQ(q.asperities[i].release_s, q.onset_s[summit] + q.lifetime_s[summit]);
+      EXPECT_EQ(q.asperities[i].wear_rate_per_ms, q.wear_rate_per_ms[summit]);
+      EXPECT_TRUE(std::isinf(p.asperities[i].release_s));
+      EXPECT_EQ(p.asperities[i].wear_rate_per_ms, 0.0);
+    }
+    lifetimes.insert(lifetimes.end(), q.lifetime_s.begin(), q.lifetime_s.end());
+    wear.insert(wear.end(), q.wear_rate_per_ms.begin(), q.wear_rate_per_ms.end());
+  }
+  ASSERT_GT(lifetimes.size(), 400u);
+  const auto n = static_cast<double>(lifetimes.size());
+  double mean_life = 0.0, mean_wear = 0.0;
+  for (double t : lifetimes) mean_life += t / n;
+  for (double w : wear) mean_wear += w / n;
+  EXPECT_NEAR(mean_life, 2e-3, 4.0 * 2e-3 / std::sqrt(n));
+  EXPECT_NEAR(mean_wear, 0.15, 4.0 * 0.3 / std::sqrt(12.0 * n));
+  EXPECT_TRUE(std::all_of(wear.begin(), wear.end(), [](double w) { return w >= 0.0 && w <= 0.3; }));
+  // Laws that can draw negative lifetimes or wear rates, or unbounded wear, are refused.
+  EXPECT_THROW(read_surface(LIGHT + "[lifetime]\nkind = \"normal\"\nmean = 1e-3\nstd = 1e-3\n"), InputError);
+  EXPECT_THROW(read_surface(LIGHT + "[wear]\nkind = \"normal\"\nmean = 0.1\nstd = 0.1\n"), InputError);
+  EXPECT_THROW(read_surface(LIGHT + "[wear]\nkind = \"gamma\"\nshape = 2\nscale = 0.1\n"), InputError);
+}
 
 TEST(PopulationContact, LoadSpreadGivesEverySummitALoadFromItsHeight) {
   // [load] rule = "spread" (MODEL.md §4.4): every summit is in contact and an asperity, its
