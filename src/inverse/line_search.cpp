@@ -177,6 +177,11 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
         }
       }
     }
+    // Each atom's own placement again, now that every atom is in (a cycle of onsets handed
+    // round is walked one atom at a time where each step pays), then pairs.
+    const double before = fit.residual_v2;
+    replace(fit);
+    if (fit.residual_v2 < before) improved = true;
     if (fit.residual_v2 >= options_.reseat_misfit * static_cast<double>(samples) * s2 && exchange(fit)) improved = true;
     if (!improved) return;
   }
