@@ -33,6 +33,9 @@ constexpr std::size_t FREQUENCIES = 8;
 constexpr std::size_t EXACT = 8;
 // Loads tried per frequency when each atom has its own (log-spaced over the prior's).
 constexpr std::size_t LOAD_GRID = 12;
+// Two placements of one atom whose loads differ by less than this in ln N (and onsets by less
+// than half a period) are the same to the refit that follows.
+constexpr double PLACEMENT_LOG_LOAD = 0.1;
 
 }  // namespace
 
@@ -134,6 +137,52 @@ LineCandidate LineProposals::score(const AtomParameters& atom, std::span<const d
   return {atom, 2.0 * amplitude * dot - amplitude * amplitude * energy, amplitude * amplitude * energy};
 }
 
+struct LineProposals::Rough {
+  AtomParameters atom;
+  double score;
+};
+
+struct LineProposals::Residual {
+  std::span<const double> r;
+  std::vector<double> prefix;  // prefix sums of r
+  double amplitude = 1.0, d = 0.0;
+};
+
+void LineProposals::load_residual(Residual& q) const {
+  const std::size_t samples = model_->samples();
+  if (q.r.size() != samples) throw Error("LineProposals: one residual value per sample expected");
+  q.prefix.assign(samples + 1, 0.0);
+  for (std::size_t j = 0; j < samples; ++j) q.prefix[j + 1] = q.prefix[j] + q.r[j];
+  const std::size_t sliding = fft_->sliding;
+  for (std::size_t j = 0; j < sliding; ++j) fft_->a[j][0] = j < samples ? q.r[j] : 0.0, fft_->a[j][1] = 0.0;
+  fftw_execute_dft(fft_->forward, fft_->a, fft_->record);
+}
+
+void LineProposals::matched_filter(double omega, std::vector<std::complex<double>>& matched) const {
+  // K(tau) = E(tau) e^{i omega tau}; C = IFFT(FFT(r) conj(FFT(K))): the sliding matched filter
+  // C(t_b) = sum_tau r(t_b + tau) E(tau) e^{-i omega tau} at every t_b at once.
+  const std::size_t samples = model_->samples(), sliding = fft_->sliding;
+  const double h = model_->atoms().grid().step_s;
+  for (std::size_t j = 0; j < sliding; ++j) {
+    if (j < samples) {
+      const double phase = omega * h * static_cast<double>(j);
+      fft_->a[j][0] = envelope_[j] * std::cos(phase), fft_->a[j][1] = envelope_[j] * std::sin(phase);
+    } else {
+      fft_->a[j][0] = fft_->a[j][1] = 0.0;
+    }
+  }
+  fftw_execute_dft(fft_->forward, fft_->a, fft_->b);
+  for (std::size_t j = 0; j < sliding; ++j) {
+    const std::complex<double> x(fft_->record[j][0], fft_->record[j][1]), y(fft_->b[j][0], fft_->b[j][1]);
+    const std::complex<double> z = x * std::conj(y);
+    fft_->a[j][0] = z.real(), fft_->a[j][1] = z.imag();
+  }
+  fftw_execute_dft(fft_->backward, fft_->a, fft_->b);
+  const double inverse_length = 1.0 / static_cast<double>(sliding);
+  matched.resize(samples);
+  for (std::size_t j = 0; j < samples; ++j) matched[j] = std::complex<double>(fft_->b[j][0], fft_->b[j][1]) * inverse_length;
+}
+
 std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, double amplitude, double d, double load_factor,
                                                   std::size_t count) {
   const AtomLibrary& lib = model_->atoms();
@@ -142,10 +191,7 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
   const AtomModel& atom_model = lib.model();
   const std::size_t samples = grid.samples;
   if (r.size() != samples) throw Error("LineProposals::propose: one residual value per sample expected");
-  const double h = grid.step_s, m = device.asperity.mass_kg, scale = model_->volts_per_unit();
-  std::vector<double> prefix(samples + 1, 0.0);
-  for (std::size_t j = 0; j < samples; ++j) prefix[j + 1] = prefix[j] + r[j];
-  auto index_of = [&](double t) { return static_cast<std::size_t>(std::clamp(std::round((t - grid.start_s) / h), 0.0, static_cast<double>(samples))); };
+  const double h = grid.step_s, m = device.asperity.mass_kg;
 
   // One transform per tail start.
   const std::size_t bins = last_bin_ >= first_bin_ ? last_bin_ - first_bin_ + 1 : 0;
@@ -180,91 +226,16 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
   // the loads and onsets the layout allows. For each frequency the tail's correlation with r
   // at every t_b at once: the sliding matched filter C(t_b) = sum_tau r(t_b + tau) E(tau)
   // e^{-i omega tau}, a cross-correlation by FFT.
-  struct Rough {
-    AtomParameters atom;
-    double score;
-  };
+  Residual q{r, {}, amplitude, d};
+  load_residual(q);
   std::vector<Rough> rough;
-  const std::size_t sliding = fft_->sliding;
-  for (std::size_t j = 0; j < sliding; ++j) fft_->a[j][0] = j < samples ? r[j] : 0.0, fft_->a[j][1] = 0.0;
-  fftw_execute_dft(fft_->forward, fft_->a, fft_->record);
-  std::vector<std::complex<double>> matched(samples);
-  const double inverse_length = 1.0 / static_cast<double>(sliding);
-  // The plateau's and the tail's energies and correlations, from prefix sums.
-  auto add_candidate = [&](const AtomParameters& atom, double pi, double phi, std::size_t b_index) {
-    const std::size_t on = std::min(samples, index_of(atom.onset_s));
-    const std::size_t off = std::min(samples - 1, b_index);
-    const double a_b = std::min(1.0, pi);  // the velocity amplitude at breakaway [v_b]
-    const double tail = a_b * scale * std::real(std::polar(1.0, phi) * std::conj(matched[off]));
-    const double plateau = pi > 1.0 && off > on ? scale * (prefix[off] - prefix[on]) : 0.0;
-    const double energy = scale * scale * ((pi > 1.0 && off > on ? static_cast<double>(off - on) : 0.0) +
-                                           0.5 * a_b * a_b * envelope_energy_[samples - off]);
-    rough.push_back({atom, 2.0 * amplitude * (tail + plateau) - amplitude * amplitude * energy});
-  };
+  std::vector<std::complex<double>> matched;
   for (std::size_t peak : peaks) {
     const double omega_bin = bin_rad_per_s * static_cast<double>(first_bin_ + peak);
     const double k = std::clamp(m * (omega_bin * omega_bin + d * d), lib.min_stiffness(), lib.max_stiffness());
-    const double omega0 = std::sqrt(k / m);
     AtomParameters nominal{k, layout_.nominal_load_n * (layout_.load_shared ? load_factor : 1.0), layout_.onset_min_s};
-    const double omega = atom_model.tail_angular_frequency(nominal, d);
-    // K(tau) = E(tau) e^{i omega tau}; C = IFFT(FFT(r) conj(FFT(K))).
-    for (std::size_t j = 0; j < sliding; ++j) {
-      if (j < samples) {
-        const double phase = omega * h * static_cast<double>(j);
-        fft_->a[j][0] = envelope_[j] * std::cos(phase), fft_->a[j][1] = envelope_[j] * std::sin(phase);
-      } else {
-        fft_->a[j][0] = fft_->a[j][1] = 0.0;
-      }
-    }
-    fftw_execute_dft(fft_->forward, fft_->a, fft_->b);
-    for (std::size_t j = 0; j < sliding; ++j) {
-      const std::complex<double> x(fft_->record[j][0], fft_->record[j][1]), y(fft_->b[j][0], fft_->b[j][1]);
-      const std::complex<double> z = x * std::conj(y);
-      fft_->a[j][0] = z.real(), fft_->a[j][1] = z.imag();
-    }
-    fftw_execute_dft(fft_->backward, fft_->a, fft_->b);
-    for (std::size_t j = 0; j < samples; ++j) matched[j] = std::complex<double>(fft_->b[j][0], fft_->b[j][1]) * inverse_length;
-    std::vector<double> loads;
-    if (layout_.load_per_atom) loads = loads_grid_;
-    else loads.push_back(nominal.load_n);
-    for (double load : loads) {
-      AtomParameters atom{k, load, layout_.onset_min_s};
-      const double pi = atom_model.carried_phase(atom);
-      const ShapeWeights w = lib.shapes().weights(pi, d / omega0);
-      const double carried = w.theta_b / omega0;  // onset to breakaway [s]
-      if (layout_.onset_free) {
-        // Every breakaway on the grid whose onset the prior allows.
-        const std::size_t first = index_of(layout_.onset_min_s + carried), last = index_of(layout_.onset_max_s + carried);
-        for (std::size_t b = first; b <= std::min(last, samples - 1); ++b) {
-          atom.onset_s = grid.at(b) - carried;
-          add_candidate(atom, pi, w.phi, b);
-        }
-      } else {
-        add_candidate(atom, pi, w.phi, index_of(atom.onset_s + carried));
-      }
-    }
-    if (layout_.load_per_atom && !layout_.onset_free) {
-      // The onset known, each breakaway time is a load: theta_b(Pi) = omega0 (t_b - t_on) for
-      // Pi > 1 (monotone), on the grid between the lightest and the heaviest load's.
-      AtomParameters light{k, loads_grid_.front(), layout_.onset_min_s}, heavy{k, loads_grid_.back(), layout_.onset_min_s};
-      const std::size_t first = index_of(atom_model.breakaway_time(light, d)), last = index_of(atom_model.breakaway_time(heavy, d));
-      double pi_guess = std::max(1.0, atom_model.carried_phase(light));
-      for (std::size_t b = first; b <= std::min(last, samples - 1); ++b) {
-        const double target = omega0 * (grid.at(b) - layout_.onset_min_s);
-        // Newton on theta_b(Pi) - target, d theta_b / d Pi = sqrt(Pi^2 - 1) / Pi.
-        double pi = std::max(pi_guess, 1.0 + 1e-9);
-        for (int it = 0; it < 20; ++it) {
-          const double f = AtomShapes::breakaway_phase(pi, d / omega0) - target;
-          const double slope = std::sqrt(std::max(pi * pi - 1.0, 1e-12)) / pi;
-          pi = std::max(1.0 + 1e-9, pi - f / slope);
-          if (std::abs(f) < 1e-9) break;
-        }
-        pi_guess = pi;
-        AtomParameters atom{k, pi * m * omega0 * device.model.belt_velocity_m_per_s / lib.ratios().reference(), layout_.onset_min_s};
-        const ShapeWeights w = lib.shapes().weights(pi, d / omega0);
-        add_candidate(atom, pi, w.phi, b);
-      }
-    }
+    matched_filter(atom_model.tail_angular_frequency(nominal, d), matched);
+    add_placements(nominal, q, matched, rough);
   }
   // The best distinct ones, best first: neighbours on the grid (a breakaway a few samples on, a
   // load a grid step away) are the same atom to the LM that follows. A heap, not a sort: there
@@ -287,6 +258,108 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
   }
   std::sort(out.begin(), out.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
   if (out.size() > count) out.resize(count);
+  return out;
+}
+
+std::size_t LineProposals::index_of(double t) const {
+  const RecordGrid& grid = model_->atoms().grid();
+  return static_cast<std::size_t>(
+      std::clamp(std::round((t - grid.start_s) / grid.step_s), 0.0, static_cast<double>(grid.samples)));
+}
+
+void LineProposals::add_rough(const AtomParameters& atom, double pi, const ShapeWeights& w, std::size_t breakaway, const Residual& q,
+                              std::span<const std::complex<double>> matched, std::vector<Rough>& rough) const {
+  // The plateau's and the tail's energies and correlations, from prefix sums.
+  const std::size_t samples = model_->samples();
+  const double scale = model_->volts_per_unit();
+  const std::size_t on = std::min(samples, index_of(atom.onset_s));
+  const std::size_t off = std::min(samples - 1, breakaway);
+  const double a_b = std::exp(-w.log_amplitude);  // the tail's velocity amplitude where it starts [v_b]
+  const double tail = a_b * scale * std::real(std::polar(1.0, w.phi) * std::conj(matched[off]));
+  const double plateau = pi > 1.0 && off > on ? scale * (q.prefix[off] - q.prefix[on]) : 0.0;
+  const double energy = scale * scale * ((pi > 1.0 && off > on ? static_cast<double>(off - on) : 0.0) +
+                                         0.5 * a_b * a_b * envelope_energy_[samples - off]);
+  rough.push_back({atom, 2.0 * q.amplitude * (tail + plateau) - q.amplitude * q.amplitude * energy});
+}
+
+void LineProposals::add_breakaways(AtomParameters atom, const Residual& q, std::span<const std::complex<double>> matched,
+                                   std::vector<Rough>& rough) const {
+  const AtomLibrary& lib = model_->atoms();
+  const double omega0 = std::sqrt(atom.stiffness_n_per_m / lib.device().asperity.mass_kg);
+  const double pi = lib.model().carried_phase(atom);
+  const ShapeWeights w = lib.shapes().weights(pi, q.d / omega0);
+  const double carried = w.theta_b / omega0;  // onset to breakaway [s]
+  if (!layout_.onset_free) {
+    add_rough(atom, pi, w, index_of(atom.onset_s + carried), q, matched, rough);
+    return;
+  }
+  // Every breakaway on the grid whose onset the prior allows.
+  const RecordGrid& grid = lib.grid();
+  const std::size_t first = index_of(layout_.onset_min_s + carried), last = index_of(layout_.onset_max_s + carried);
+  for (std::size_t b = first; b <= std::min(last, grid.samples - 1); ++b) {
+    atom.onset_s = grid.at(b) - carried;
+    add_rough(atom, pi, w, b, q, matched, rough);
+  }
+}
+
+void LineProposals::add_placements(const AtomParameters& nominal, const Residual& q, std::span<const std::complex<double>> matched,
+                                   std::vector<Rough>& rough) const {
+  const AtomLibrary& lib = model_->atoms();
+  const AtomModel& atom_model = lib.model();
+  const RecordGrid& grid = lib.grid();
+  const double k = nominal.stiffness_n_per_m, m = lib.device().asperity.mass_kg, d = q.d;
+  const double omega0 = std::sqrt(k / m);
+  std::vector<double> loads;
+  if (layout_.load_per_atom) loads = loads_grid_;
+  else loads.push_back(nominal.load_n);
+  for (double load : loads) add_breakaways({k, load, layout_.onset_min_s}, q, matched, rough);
+  if (layout_.load_per_atom && !layout_.onset_free) {
+    // The onset known, each breakaway time is a load: theta_b(Pi) = omega0 (t_b - t_on) for
+    // Pi > 1 (monotone), on the grid between the prior's lightest and heaviest load's (its
+    // whole support: a load the grid misses is reached by no refit, whose breakaway would
+    // have to cross whole tail periods).
+    const auto [low, high] = loads_->support();
+    AtomParameters light{k, layout_.nominal_load_n * low, layout_.onset_min_s}, heavy{k, layout_.nominal_load_n * high, layout_.onset_min_s};
+    const std::size_t first = index_of(atom_model.breakaway_time(light, d)), last = index_of(atom_model.breakaway_time(heavy, d));
+    double pi_guess = std::max(1.0, atom_model.carried_phase(light));
+    for (std::size_t b = first; b <= std::min(last, grid.samples - 1); ++b) {
+      const double target = omega0 * (grid.at(b) - layout_.onset_min_s);
+      // Newton on theta_b(Pi) - target, d theta_b / d Pi = sqrt(Pi^2 - 1) / Pi.
+      double pi = std::max(pi_guess, 1.0 + 1e-9);
+      for (int it = 0; it < 20; ++it) {
+        const double f = AtomShapes::breakaway_phase(pi, d / omega0) - target;
+        const double slope = std::sqrt(std::max(pi * pi - 1.0, 1e-12)) / pi;
+        pi = std::max(1.0 + 1e-9, pi - f / slope);
+        if (std::abs(f) < 1e-9) break;
+      }
+      pi_guess = pi;
+      AtomParameters atom{k, pi * m * omega0 * lib.device().model.belt_velocity_m_per_s / lib.ratios().reference(), layout_.onset_min_s};
+      add_rough(atom, pi, lib.shapes().weights(pi, d / omega0), b, q, matched, rough);
+    }
+  }
+}
+
+std::vector<LineCandidate> LineProposals::propose_placements(const AtomParameters& atom, std::span<const double> r, double amplitude,
+                                                         double d, std::size_t count) {
+  Residual q{r, {}, amplitude, d};
+  load_residual(q);
+  std::vector<std::complex<double>> matched;
+  matched_filter(model_->atoms().model().tail_angular_frequency(atom, d), matched);
+  std::vector<Rough> rough;
+  add_placements(atom, q, matched, rough);
+  // The best placements at least half a period or a load grid step apart (a period on is the
+  // same tail's other phase).
+  const double period = 2.0 * PI / std::sqrt(atom.stiffness_n_per_m / model_->atoms().device().asperity.mass_kg);
+  std::sort(rough.begin(), rough.end(), [](const Rough& x, const Rough& y) { return x.score > y.score; });
+  std::vector<LineCandidate> out;
+  for (const Rough& c : rough) {
+    if (out.size() >= count) break;
+    const bool close = std::any_of(out.begin(), out.end(), [&](const LineCandidate& o) {
+      return std::abs(o.atom.onset_s - c.atom.onset_s) < 0.5 * period && std::abs(std::log(o.atom.load_n / c.atom.load_n)) < PLACEMENT_LOG_LOAD;
+    });
+    if (!close) out.push_back(score(c.atom, r, amplitude, d));
+  }
+  std::sort(out.begin(), out.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
   return out;
 }
 

@@ -14,6 +14,7 @@
 //! and onsets the prior allows whose breakaway puts the tail in phase with C (t_b where
 //! phi - omega t_b = arg C mod 2 pi). The best of them by this estimate are scored exactly
 //! (their atoms evaluated), and returned best first.
+#include <complex>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -44,11 +45,34 @@ class LineProposals {
   std::vector<LineCandidate> propose(std::span<const double> residual, double amplitude, double damping_rate,
                                      double load_factor, std::size_t count);
 
+  //! At most `count` placements (onset and load, as the layout frees them) for `atom` (its
+  //! stiffness held) on the residual `r`, distinct (half a period or a load step apart), best
+  //! first by exact score: the same sliding matched filter and plateau sums as `propose`, at
+  //! one frequency.
+  std::vector<LineCandidate> propose_placements(const AtomParameters& atom, std::span<const double> residual, double amplitude,
+                                            double damping_rate, std::size_t count);
+
   //! The exact score 2 a <r, g> - a^2 |g|^2 of one atom, and its energy.
   LineCandidate score(const AtomParameters& atom, std::span<const double> residual, double amplitude, double damping_rate) const;
 
  private:
   struct Fft;
+  struct Residual;
+  struct Rough;
+  //! Prefix sums and the sliding transform of a residual.
+  void load_residual(Residual& q) const;
+  //! The sliding matched filter of the loaded residual at tail frequency omega [rad/s].
+  void matched_filter(double omega, std::vector<std::complex<double>>& matched) const;
+  //! The rough score of `atom` (carried phase pi, shape w: the tail's phase and amplitude) breaking away at sample `breakaway`.
+  void add_rough(const AtomParameters& atom, double pi, const ShapeWeights& w, std::size_t breakaway, const Residual& q,
+                 std::span<const std::complex<double>> matched, std::vector<Rough>& rough) const;
+  //! `atom` at its onset, or at every onset the layout allows.
+  void add_breakaways(AtomParameters atom, const Residual& q, std::span<const std::complex<double>> matched,
+                      std::vector<Rough>& rough) const;
+  //! Every load and onset the layout allows for an atom of `nominal`'s stiffness.
+  void add_placements(const AtomParameters& nominal, const Residual& q, std::span<const std::complex<double>> matched,
+                      std::vector<Rough>& rough) const;
+  [[nodiscard]] std::size_t index_of(double t) const;
   const RecordModel* model_;
   FitLayout layout_;
   const LoadPrior* loads_;

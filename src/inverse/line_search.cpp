@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
+#include "core/constants.hpp"
 #include "core/error.hpp"
 
 namespace stengmc {
@@ -18,6 +20,14 @@ constexpr double NEIGHBOURHOOD_TIME_S = 2e-6;
 // full refits is refitted with only HOPELESS_ITERATIONS steps (LineSearch::refit).
 constexpr double HOPELESS_CHI2_GAP = 1000.0;
 constexpr std::size_t HOPELESS_ITERATIONS = 5;
+// The pair re-seat (LineSearch::exchange): PAIR_ONSETS placements proposed for each atom of a
+// pair, every combination screened, the best EXCHANGES_REFITTED refitted.
+constexpr std::size_t PAIR_ONSETS = 6;
+constexpr std::size_t EXCHANGES_REFITTED = 3;
+// Splits refitted by LineSearch::split (the best by their scores).
+constexpr std::size_t SPLITS_REFITTED = 2;
+// Placements tried for each atom by LineSearch::replace.
+constexpr std::size_t REPLACEMENTS = 3;
 }  // namespace
 
 LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options)
@@ -100,6 +110,15 @@ std::vector<OrderFit> LineSearch::search(const FitState& start, std::size_t max_
     state.atoms.push_back(best.atom);
     const std::vector<bool> active = neighbours(state);
     fits.push_back(fit_->refine(std::move(state), active, false, false, options_.max_iterations));
+    if (n >= 2) {
+      // The order reached by splitting one of the order below's atoms instead, where that fits better.
+      if (std::optional<OrderFit> halves = split(fits[n - 1]); halves && halves->residual_v2 < fits[n].residual_v2) {
+        if (std::getenv("STENGMC_DEBUG_SEARCH"))
+          std::fprintf(stderr, "n=%zu split instead: rss %.4g -> %.4g\n", n, fits[n].residual_v2, halves->residual_v2);
+        fits[n] = std::move(*halves);
+      }
+      replace(fits.back());
+    }
     if (std::getenv("STENGMC_DEBUG_SEARCH")) {
       std::fprintf(stderr, "n=%zu add k %.3f N %.3g on %.3f us score %.4g energy %.4g -> rss %.4g\n", n, best.atom.stiffness_n_per_m,
                    best.atom.load_n, 1e6 * best.atom.onset_s, best.score_v2, best.energy_v2, fits.back().residual_v2);
@@ -158,34 +177,203 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
         }
       }
     }
-    // Pairs of close lines with each other's onsets and loads: a greedy path can give two
-    // asperities of nearly one frequency each other's plateaus, which moving either alone
-    // cannot undo.
-    const AtomModel& model = fit_->model().atoms().model();
-    for (std::size_t i = 0; i < fit.state.atoms.size(); ++i)
-      for (std::size_t j = i + 1; j < fit.state.atoms.size(); ++j) {
-        if (fit.residual_v2 < options_.reseat_misfit * static_cast<double>(samples) * s2) return;
-        const AtomParameters& a = fit.state.atoms[i];
-        const AtomParameters& b = fit.state.atoms[j];
-        const double d = fit.state.damping_rate_per_s;
-        const double width = 4.0 * d / model.tail_angular_frequency(a, d);
-        if (std::abs(std::log(a.stiffness_n_per_m / b.stiffness_n_per_m)) > NEIGHBOURHOOD_WIDTHS * width) continue;
-        if (!fit_->layout().onset_free && !fit_->layout().load_per_atom) continue;
-        FitState trial = fit.state;
-        std::swap(trial.atoms[i].onset_s, trial.atoms[j].onset_s);
-        std::swap(trial.atoms[i].load_n, trial.atoms[j].load_n);
-        std::vector<bool> active(trial.atoms.size(), false);
-        active[i] = active[j] = true;
-        OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
-        if (refitted.residual_v2 < fit.residual_v2) {
-          if (std::getenv("STENGMC_DEBUG_SEARCH"))
-            std::fprintf(stderr, "swap %zu %zu: rss %.4g -> %.4g\n", i, j, fit.residual_v2, refitted.residual_v2);
-          fit = std::move(refitted);
-          improved = true;
-        }
-      }
+    // Each atom's own placement again, now that every atom is in (a cycle of onsets handed
+    // round is walked one atom at a time where each step pays), then pairs.
+    const double before = fit.residual_v2;
+    replace(fit);
+    if (fit.residual_v2 < before) improved = true;
+    if (fit.residual_v2 >= options_.reseat_misfit * static_cast<double>(samples) * s2 && exchange(fit)) improved = true;
     if (!improved) return;
   }
+}
+
+bool LineSearch::exchange(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  if (!layout.onset_free && !layout.load_per_atom) return false;
+  const RecordModel& record_model = fit_->model();
+  const std::size_t samples = fit_->record().size();
+  const std::size_t n = fit.state.atoms.size();
+  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  auto dot = [](std::span<const double> x, std::span<const double> y) {
+    double s = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) s += x[k] * y[k];
+    return s;
+  };
+  auto unit = [&](const AtomParameters& atom, double d) {
+    AtomSums sums;
+    sums.reset(samples);
+    record_model.add(atom, d, sums);
+    std::vector<double> g(samples);
+    record_model.unit_voltage(sums, g);
+    return g;
+  };
+  bool kept = false;
+  for (std::size_t round = 0; round < n && fit.residual_v2 >= fits_rss; ++round) {
+    FitState state = fit.state;
+    const std::vector<double> r = fit_->residual(state);
+    const double a = state.amplitude, d = state.damping_rate_per_s;
+    std::vector<std::vector<double>> g(n);
+    for (std::size_t i = 0; i < n; ++i) g[i] = unit(state.atoms[i], d);
+    const double rss = dot(r, r);
+    struct Exchange {
+      std::size_t i, j;
+      AtomParameters first, second;
+      double gain;
+    };
+    std::vector<Exchange> screened;
+    std::vector<double> q(samples);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        // Both taken out; each one's best onsets on what is left; the best pair of them,
+        // their overlap counted (close lines' tails are far from orthogonal).
+        for (std::size_t k = 0; k < samples; ++k) q[k] = r[k] + a * (g[i][k] + g[j][k]);
+        const double without = dot(q, q);
+        const std::vector<LineCandidate> ci = proposals_->propose_placements(state.atoms[i], q, a, d, PAIR_ONSETS);
+        const std::vector<LineCandidate> cj = proposals_->propose_placements(state.atoms[j], q, a, d, PAIR_ONSETS);
+        std::vector<std::vector<double>> gi(ci.size()), gj(cj.size());
+        for (std::size_t u = 0; u < ci.size(); ++u) gi[u] = unit(ci[u].atom, d);
+        for (std::size_t v = 0; v < cj.size(); ++v) gj[v] = unit(cj[v].atom, d);
+        for (std::size_t u = 0; u < ci.size(); ++u)
+          for (std::size_t v = 0; v < cj.size(); ++v) {
+            const double joint = ci[u].score_v2 + cj[v].score_v2 - 2.0 * a * a * dot(gi[u], gj[v]);
+            const double gain = rss - (without - joint);
+            if (gain > 0.0) screened.push_back({i, j, ci[u].atom, cj[v].atom, gain});
+          }
+      }
+    std::sort(screened.begin(), screened.end(), [](const Exchange& e, const Exchange& f) { return e.gain > f.gain; });
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "pair re-seat screening: n %zu rss %.4g, %zu gains > 0, best %.3g\n", n, rss, screened.size(),
+                   screened.empty() ? 0.0 : screened.front().gain);
+    // Down the screened list, every exchange that lowers the misfit is kept, while a pair's
+    // atoms have not moved this round (its screening is then stale); EXCHANGES_REFITTED
+    // refits that do not lower it end the round.
+    // A refit sorts the atoms by k: an unmoved atom is found again by its (unchanged) parameters.
+    auto find = [&](const AtomParameters& x) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const AtomParameters& y = fit.state.atoms[k];
+        if (y.stiffness_n_per_m == x.stiffness_n_per_m && y.load_n == x.load_n && y.onset_s == x.onset_s) return k;
+      }
+      return n;
+    };
+    bool improved = false;
+    std::size_t failures = 0;
+    for (std::size_t c = 0; c < screened.size() && failures < EXCHANGES_REFITTED; ++c) {
+      const Exchange& e = screened[c];
+      const std::size_t i = find(state.atoms[e.i]), j = find(state.atoms[e.j]);
+      if (i == n || j == n) continue;  // moved this round
+      FitState trial = fit.state;
+      trial.atoms[i] = e.first;
+      trial.atoms[j] = e.second;
+      std::vector<bool> active(n, false);
+      active[i] = active[j] = true;
+      OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+      if (!(refitted.residual_v2 < fit.residual_v2)) {
+        ++failures;
+        continue;
+      }
+      if (std::getenv("STENGMC_DEBUG_SEARCH"))
+        std::fprintf(stderr, "pair re-seat k %.3f on %.3f, k %.3f on %.3f -> on %.3f, %.3f (screened gain %.3g): rss %.4g -> %.4g\n",
+                     fit.state.atoms[i].stiffness_n_per_m, 1e6 * fit.state.atoms[i].onset_s, fit.state.atoms[j].stiffness_n_per_m,
+                     1e6 * fit.state.atoms[j].onset_s, 1e6 * e.first.onset_s, 1e6 * e.second.onset_s, e.gain, fit.residual_v2,
+                     refitted.residual_v2);
+      fit = std::move(refitted);
+      improved = kept = true;
+    }
+    if (!improved) break;
+  }
+  return kept;
+}
+
+void LineSearch::replace(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  if (!layout.onset_free && !layout.load_per_atom) return;
+  const std::size_t samples = fit_->record().size();
+  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  for (std::size_t i = 0; i < fit.state.atoms.size() && fit.residual_v2 >= fits_rss; ++i) {
+    FitState without = fit.state;
+    const AtomParameters own = without.atoms[i];
+    without.atoms.erase(without.atoms.begin() + static_cast<std::ptrdiff_t>(i));
+    const std::vector<double> q = fit_->residual(without);
+    const double a = without.amplitude, d = without.damping_rate_per_s;
+    const LineCandidate current = proposals_->score(own, q, a, d);
+    const std::vector<LineCandidate> placements = proposals_->propose_placements(own, q, a, d, REPLACEMENTS);
+    for (const LineCandidate& c : placements) {
+      if (!(c.score_v2 > current.score_v2)) break;  // best first
+      FitState trial = without;
+      trial.atoms.push_back(c.atom);
+      const std::vector<bool> active = neighbours(trial);
+      OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+      if (refitted.residual_v2 < fit.residual_v2) {
+        if (std::getenv("STENGMC_DEBUG_SEARCH"))
+          std::fprintf(stderr, "replace k %.3f N %.3g on %.3f -> N %.3g on %.3f: rss %.4g -> %.4g\n", own.stiffness_n_per_m,
+                       own.load_n, 1e6 * own.onset_s, c.atom.load_n, 1e6 * c.atom.onset_s, fit.residual_v2, refitted.residual_v2);
+        fit = std::move(refitted);
+        break;
+      }
+    }
+  }
+}
+
+std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
+  const RecordModel& record_model = fit_->model();
+  const AtomModel& model = record_model.atoms().model();
+  const std::size_t samples = fit_->record().size();
+  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  const double lo = std::log(record_model.atoms().min_stiffness()), hi = std::log(record_model.atoms().max_stiffness());
+  std::optional<OrderFit> best;
+  // On the ideal device (k alone free) two close lines are told apart by the greedy path: the
+  // amplitude an atom must have leaves the second one in the residual.
+  if (!fit_->layout().onset_free && !fit_->layout().load_per_atom) return best;
+  {
+    if (fit.state.atoms.empty() || fit.residual_v2 < fits_rss) return best;
+    FitState state = fit.state;
+    const std::vector<double> r = fit_->residual(state);
+    const double a = state.amplitude, d = state.damping_rate_per_s;
+    struct Split {
+      std::size_t i;
+      AtomParameters lower, upper;
+      double gain;
+    };
+    std::vector<Split> screened;
+    std::vector<double> q(samples), g(samples);
+    double rss = 0.0;
+    for (double x : r) rss += x * x;
+    for (std::size_t i = 0; i < state.atoms.size(); ++i) {
+      const AtomParameters& own = state.atoms[i];
+      AtomSums sums;
+      sums.reset(samples);
+      record_model.add(own, d, sums);
+      record_model.unit_voltage(sums, g);
+      for (std::size_t k = 0; k < samples; ++k) q[k] = r[k] + a * g[k];
+      // Half a line width (4 d / omega in ln k) either side.
+      const double half = 2.0 * d / model.tail_angular_frequency(own, d);
+      AtomParameters lower = own, upper = own;
+      lower.stiffness_n_per_m = std::exp(std::max(lo, std::log(own.stiffness_n_per_m) - half));
+      upper.stiffness_n_per_m = std::exp(std::min(hi, std::log(own.stiffness_n_per_m) + half));
+      // |r|^2 against |q - a g_lower - a g_upper|^2, q = r + a g_own: the two scored in turn.
+      AtomSums only;
+      only.reset(samples);
+      record_model.add(lower, d, only);
+      record_model.unit_voltage(only, g);
+      for (std::size_t k = 0; k < samples; ++k) q[k] -= a * g[k];
+      const LineCandidate second_half = proposals_->score(upper, q, a, d);
+      double after = -second_half.score_v2;
+      for (std::size_t k = 0; k < samples; ++k) after += q[k] * q[k];
+      screened.push_back({i, lower, upper, rss - after});
+    }
+    std::sort(screened.begin(), screened.end(), [](const Split& x, const Split& y) { return x.gain > y.gain; });
+    for (std::size_t c = 0; c < screened.size() && c < SPLITS_REFITTED; ++c) {
+      FitState trial = fit.state;
+      trial.atoms.erase(trial.atoms.begin() + static_cast<std::ptrdiff_t>(screened[c].i));
+      trial.atoms.push_back(screened[c].lower);
+      std::vector<bool> active = neighbours(trial);
+      trial.atoms.push_back(screened[c].upper);
+      active.push_back(true);
+      OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+      if (!best || refitted.residual_v2 < best->residual_v2) best = std::move(refitted);
+    }
+  }
+  return best;
 }
 
 void LineSearch::refit(std::vector<OrderFit>& fits, std::size_t first) {

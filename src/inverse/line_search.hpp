@@ -10,6 +10,7 @@
 //! which no single atom explains: the count stays identifiable where frequency resolution is
 //! lost, and the greedy step adds the second one. The orders the posterior weighs (the greedy
 //! count -1 .. +extra) are then refitted in full, the device's shared parameters with them.
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -57,6 +58,26 @@ class LineSearch {
   //! apart), which no local fit undoes; with the other atoms in place the proposal sees its
   //! atom alone. Up to `sweeps` passes, while one improves.
   void reseat(OrderFit& fit, std::size_t sweeps);
+  //! Exchanges onsets (and, with a load per atom, loads) between two atoms, any two: a greedy
+  //! path gives an atom the onset of another asperity whose plateau it met first, so the set
+  //! of onsets the low band pins is right but not which line has which, and moving one atom's
+  //! onset alone costs a plateau for what its tail gains. Every pair is screened on the raw
+  //! residual, each moved atom's onset touched up over one period (its tail's phase); the
+  //! best few are refitted and the first that lowers the misfit kept, while one does.
+  //! Returns whether one was kept.
+  bool exchange(OrderFit& fit);
+  //! Each atom's placement (onset and load, as the layout frees them; its k held) chosen again
+  //! on the residual without it: an early atom took its place on a record that held all the
+  //! others' plateaus and first cycles, which pull the placement a whole tail period off (a
+  //! load whose breakaway comes a period late, an onset on another's plateau). Kept where the
+  //! refit with its neighbours lowers the misfit.
+  void replace(OrderFit& fit);
+  //! Two asperities within a line width or two of each other, fitted as one atom, with the
+  //! greedy path's next atom spent elsewhere (no single atom added beside the merged one
+  //! explains the pair): the best fit with one of `fit`'s atoms split in two (half a line
+  //! width either side, each keeping the load and onset), the most promising splits by their
+  //! scores refitted with their neighbours; none when `fit` fits to the noise or has no atom.
+  std::optional<OrderFit> split(const OrderFit& fit);
 
   RecordFit* fit_;
   LineProposals* proposals_;

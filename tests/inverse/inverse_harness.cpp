@@ -5,7 +5,7 @@
 // with the CPU time per record. Not a test: a measuring tool whose figures go in the commit
 // messages and docs/inverse.md's development notes.
 //
-//   inverse_harness DEVICE.toml [records] [seed] [verbose]
+//   inverse_harness DEVICE.toml [records] [seed] [verbose] [only record]
 #include <omp.h>
 
 #include <algorithm>
@@ -58,7 +58,7 @@ void report(const char* label, const std::vector<Outcome>& all, std::size_t lo, 
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: inverse_harness DEVICE.toml [records] [seed] [verbose]\n");
+    std::fprintf(stderr, "usage: inverse_harness DEVICE.toml [records] [seed] [verbose] [only record]\n");
     return 2;
   }
   try {
@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
     const std::size_t records = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 100;
     const std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
     const int verbose = argc > 4 ? std::atoi(argv[4]) : 0;
+    // A sixth argument estimates that one record alone (to follow its search with STENGMC_DEBUG_SEARCH).
+    const long only = argc > 5 ? std::atol(argv[5]) : -1;
     const InverseSetup setup = inverse_setup(device_study);
     const double t0 = omp_get_wtime();
     const std::unique_ptr<AtomLibrary> atoms = build_atom_library(setup);
@@ -82,6 +84,7 @@ int main(int argc, char** argv) {
       RecordEstimator estimator(*atoms, setup.prior);
 #pragma omp for schedule(dynamic, 1)
       for (std::size_t r = 0; r < records; ++r) {
+        if (only >= 0 && static_cast<long>(r) != only) continue;
         const double s0 = omp_get_wtime();
         const RealisationRecord record = run_realisation(prior, r, true);
         Outcome& o = outcomes[r];
