@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
+#include <string>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -252,6 +254,35 @@ std::string TomlTable::choice(std::string_view key, std::string_view fallback,
   fail(key, "= \"" + value + "\" is not one of " + join(allowed));
 }
 
+namespace {
+//! "[i][j]...": where an item lies in nested arrays (built by appending: GCC 12 warns,
+//! wrongly, of -Wrestrict on a chained concatenation of temporaries).
+std::string index_path(std::initializer_list<std::size_t> indices) {
+  std::string path;
+  for (std::size_t index : indices) {
+    path += '[';
+    path += std::to_string(index);
+    path += ']';
+  }
+  return path;
+}
+
+//! The number at `where` (an index path such as "[2][1]") of array `key`: an integer or a
+//! float, finite; anything else fails naming the key and the index.
+double finite_number(const TomlTable& table, std::string_view key, const toml::node& item, const std::string& where) {
+  double value = 0.0;
+  if (const auto* integer = item.as_integer()) {
+    value = static_cast<double>(integer->get());
+  } else if (const auto* floating = item.as_floating_point()) {
+    value = floating->get();
+  } else {
+    table.fail(key, where + " is " + describe(item) + "; expected a number");
+  }
+  if (!std::isfinite(value)) table.fail(key, where + " is not a finite number");
+  return value;
+}
+}  // namespace
+
 std::vector<double> TomlTable::number_list(std::string_view key) {
   std::vector<double> out;
   const toml::node* node = node_of(lookup(key));
@@ -259,17 +290,7 @@ std::vector<double> TomlTable::number_list(std::string_view key) {
   const auto* array = node->as_array();
   if (!array) fail(key, "is " + describe(*node) + "; expected an array of numbers");
   for (std::size_t i = 0; i < array->size(); ++i) {
-    const toml::node& item = (*array)[i];
-    double value = 0.0;
-    if (const auto* integer = item.as_integer()) {
-      value = static_cast<double>(integer->get());
-    } else if (const auto* floating = item.as_floating_point()) {
-      value = floating->get();
-    } else {
-      fail(key, std::string("[") + std::to_string(i) + "] is " + describe(item) + "; expected a number");
-    }
-    if (!std::isfinite(value)) fail(key, "[" + std::to_string(i) + "] is not a finite number");
-    out.push_back(value);
+    out.push_back(finite_number(*this, key, (*array)[i], index_path({i})));
   }
   return out;
 }
@@ -288,16 +309,7 @@ std::vector<std::vector<double>> TomlTable::number_rows(std::string_view key, st
                     "; " + expected);
     std::vector<double> values;
     for (std::size_t j = 0; j < width; ++j) {
-      const toml::node& item = (*row)[j];
-      double value = 0.0;
-      if (const auto* integer = item.as_integer()) {
-        value = static_cast<double>(integer->get());
-      } else if (const auto* floating = item.as_floating_point()) {
-        value = floating->get();
-      } else {
-        fail(key, "[" + std::to_string(i) + "][" + std::to_string(j) + "] is " + describe(item) + "; expected a number");
-      }
-      if (!std::isfinite(value)) fail(key, "[" + std::to_string(i) + "][" + std::to_string(j) + "] is not a finite number");
+      const double value = finite_number(*this, key, (*row)[j], index_path({i, j}));
       values.push_back(value);
     }
     out.push_back(std::move(values));
