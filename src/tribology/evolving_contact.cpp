@@ -210,14 +210,8 @@ void integrate_evolving_contact(const Asperity& asperity, const Model2Params& pa
 
   const double w0 = std::sqrt(k / m);
   const double kappa_max = largest_step_factor(asperity);
-  const double mu_max = std::max(std::abs(params.friction.static_coefficient),
-                                 std::abs(params.friction.kinetic_coefficient));
-  // The length scale of integrate_model2, with the friction's largest excursion (1 + 5 eps).
-  double length_m = std::max({mu_max * std::abs(asperity.normal_load_n) / k,
-                              std::abs(asperity.initial_displacement_m),
-                              std::abs(asperity.initial_velocity_m_per_s) / w0,
-                              std::abs(params.belt_velocity_m_per_s) / w0});
-  if (!(length_m > 0.0) || !std::isfinite(length_m)) length_m = 1e-6;
+  // The length scale of integrate_model2 (its error control's unit).
+  const double length_m = model2_length_scale(asperity, params, k, w0);
   const double velocity_scale = w0 * length_m;
   const double accel_scale = w0 * velocity_scale;
 

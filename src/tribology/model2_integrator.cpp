@@ -128,6 +128,16 @@ void rodas4_step(const ScaledSystem& sys, const Vec2& y, const Vec2& f0, const M
 
 }  // namespace
 
+double model2_length_scale(const Asperity& asperity, const Model2Params& params, double k, double w0) {
+  const double mu_max = std::max(std::abs(params.friction.static_coefficient),
+                                 std::abs(params.friction.kinetic_coefficient));
+  const double length_m = std::max({mu_max * std::abs(asperity.normal_load_n) / k,
+                                    std::abs(asperity.initial_displacement_m),
+                                    std::abs(asperity.initial_velocity_m_per_s) / w0,
+                                    std::abs(params.belt_velocity_m_per_s) / w0});
+  return length_m > 0.0 && std::isfinite(length_m) ? length_m : 1e-6;
+}
+
 void integrate_model2(const Asperity& asperity, const Model2Params& params, double t_end_s, Model2Integration& out) {
   const double k = asperity.stiffness_n_per_m;
   const double m = asperity.mass_kg;
@@ -149,15 +159,7 @@ void integrate_model2(const Asperity& asperity, const Model2Params& params, doub
   }
 
   const double w0 = std::sqrt(k / m);
-  const double mu_max = std::max(std::abs(params.friction.static_coefficient),
-                                 std::abs(params.friction.kinetic_coefficient));
-  // Length scale: the sticking displacement mu_s N / k, or what the initial state and
-  // the belt impose when friction is (nearly) absent.
-  double length_m = std::max({mu_max * std::abs(asperity.normal_load_n) / k,
-                              std::abs(asperity.initial_displacement_m),
-                              std::abs(asperity.initial_velocity_m_per_s) / w0,
-                              std::abs(params.belt_velocity_m_per_s) / w0});
-  if (!(length_m > 0.0) || !std::isfinite(length_m)) length_m = 1e-6;
+  const double length_m = model2_length_scale(asperity, params, k, w0);
   const double velocity_scale = w0 * length_m;
   const double accel_scale = w0 * velocity_scale;
 

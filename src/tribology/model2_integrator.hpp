@@ -84,6 +84,11 @@ struct Model2Integration {
   std::size_t rejected_steps = 0;  //!< steps rejected by either error test (or non-finite)
 };
 
+//! The length scale Model 2's integrators measure displacement in [m]: the sticking
+//! displacement mu N / k (mu the larger coefficient), or what the initial state and the belt
+//! impose when friction is (nearly) absent (w0 = sqrt(k/m)); 1 um when all of them vanish.
+double model2_length_scale(const Asperity& asperity, const Model2Params& params, double k, double w0);
+
 //! Integrates one asperity of Model 2 from its initial state to `t_end_s` [s] with local
 //! error control at `params.relative_tolerance` (absolute tolerance the same, in units of
 //! the length scale described in model2_integrator.cpp): RODAS4 steps, and where friction
