@@ -147,6 +147,26 @@ std::vector<OrderFit> LineSearch::search(const FitState& start, std::size_t max_
   return fits;
 }
 
+bool LineSearch::put_back(OrderFit& fit, const FitState& without, const AtomParameters& own, const LineCandidate& current,
+                          std::span<const LineCandidate> candidates) {
+  for (const LineCandidate& c : candidates) {
+    if (!(c.score_v2 > current.score_v2)) continue;
+    FitState trial = without;
+    trial.atoms.push_back(c.atom);
+    const std::vector<bool> active = neighbours(trial);
+    OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+    if (refitted.residual_v2 < fit.residual_v2) {
+      if (std::getenv("STENGMC_DEBUG_SEARCH"))
+        std::fprintf(stderr, "re-seat k %.3f N %.3g on %.3f -> k %.3f N %.3g on %.3f: rss %.4g -> %.4g\n", own.stiffness_n_per_m,
+                     own.load_n, 1e6 * own.onset_s, c.atom.stiffness_n_per_m, c.atom.load_n, 1e6 * c.atom.onset_s, fit.residual_v2,
+                     refitted.residual_v2);
+      fit = std::move(refitted);
+      return true;
+    }
+  }
+  return false;
+}
+
 void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
   const std::size_t samples = fit_->record().size();
   const double s2 = fit_->sigma_v() * fit_->sigma_v();
@@ -161,21 +181,7 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
       const double d = without.damping_rate_per_s;
       const LineCandidate current = proposals_->score(own, r, without.amplitude, d);
       const std::vector<LineCandidate> candidates = proposals_->propose(r, without.amplitude, d, without.load_factor, 2);
-      for (const LineCandidate& c : candidates) {
-        if (!(c.score_v2 > current.score_v2)) continue;
-        FitState trial = without;
-        trial.atoms.push_back(c.atom);
-        const std::vector<bool> active = neighbours(trial);
-        OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
-        if (refitted.residual_v2 < fit.residual_v2) {
-          if (std::getenv("STENGMC_DEBUG_SEARCH"))
-            std::fprintf(stderr, "reseat k %.3f on %.3f -> k %.3f on %.3f: rss %.4g -> %.4g\n", own.stiffness_n_per_m,
-                         1e6 * own.onset_s, c.atom.stiffness_n_per_m, 1e6 * c.atom.onset_s, fit.residual_v2, refitted.residual_v2);
-          fit = std::move(refitted);
-          improved = true;
-          break;
-        }
-      }
+      if (put_back(fit, without, own, current, candidates)) improved = true;
     }
     // Each atom's own placement again, now that every atom is in (a cycle of onsets handed
     // round is walked one atom at a time where each step pays), then pairs.
@@ -296,21 +302,7 @@ void LineSearch::replace(OrderFit& fit) {
     const std::vector<double> q = fit_->residual(without);
     const double a = without.amplitude, d = without.damping_rate_per_s;
     const LineCandidate current = proposals_->score(own, q, a, d);
-    const std::vector<LineCandidate> placements = proposals_->propose_placements(own, q, a, d, REPLACEMENTS);
-    for (const LineCandidate& c : placements) {
-      if (!(c.score_v2 > current.score_v2)) break;  // best first
-      FitState trial = without;
-      trial.atoms.push_back(c.atom);
-      const std::vector<bool> active = neighbours(trial);
-      OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
-      if (refitted.residual_v2 < fit.residual_v2) {
-        if (std::getenv("STENGMC_DEBUG_SEARCH"))
-          std::fprintf(stderr, "replace k %.3f N %.3g on %.3f -> N %.3g on %.3f: rss %.4g -> %.4g\n", own.stiffness_n_per_m,
-                       own.load_n, 1e6 * own.onset_s, c.atom.load_n, 1e6 * c.atom.onset_s, fit.residual_v2, refitted.residual_v2);
-        fit = std::move(refitted);
-        break;
-      }
-    }
+    put_back(fit, without, own, current, proposals_->propose_placements(own, q, a, d, REPLACEMENTS));
   }
 }
 

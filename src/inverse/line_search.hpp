@@ -58,6 +58,11 @@ class LineSearch {
   //! apart), which no local fit undoes; with the other atoms in place the proposal sees its
   //! atom alone. Up to `sweeps` passes, while one improves.
   void reseat(OrderFit& fit, std::size_t sweeps);
+  //! `fit` with atom `own` taken out (`without`, whose linear parameters are solved) gets the
+  //! first of `candidates` that scores above own's `current` and whose refit with its
+  //! neighbours lowers the misfit. Returns whether one did.
+  bool put_back(OrderFit& fit, const FitState& without, const AtomParameters& own, const LineCandidate& current,
+                std::span<const LineCandidate> candidates);
   //! Exchanges onsets (and, with a load per atom, loads) between two atoms, any two: a greedy
   //! path gives an atom the onset of another asperity whose plateau it met first, so the set
   //! of onsets the low band pins is right but not which line has which, and moving one atom's
