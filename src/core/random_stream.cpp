@@ -23,6 +23,7 @@ std::string_view to_string(StreamKind kind) {
     case StreamKind::counterface: return "counterface";
     case StreamKind::lifetimes: return "lifetimes";
     case StreamKind::wear: return "wear";
+    case StreamKind::steps: return "steps";
   }
   return "unknown";
 }

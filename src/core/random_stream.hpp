@@ -37,6 +37,7 @@ enum class StreamKind : std::uint64_t {
   counterface = 10, //!< the counterface's friction modulation eps_i(t) ([counterface]; index = the asperity)
   lifetimes = 11,   //!< Model 2 contact lifetimes (release - onset) of a random surface's asperities ([lifetime])
   wear = 12,        //!< Model 2 wear rates of a random surface's asperities ([wear])
+  steps = 13,       //!< Model 2 stiffness steps of a random surface's asperities ([steps])
 };
 
 //! The kind's name, for messages and file attributes ("heights").

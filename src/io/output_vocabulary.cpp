@@ -151,6 +151,8 @@ constexpr std::array TERMS{
     Term{"*/summits/onset_s", "s", "summit contact onset", "summit"},
     Term{"*/summits/lifetime_s", "s", "summit contact lifetime (release - onset)", "summit"},
     Term{"*/summits/wear_rate_per_ms", "1/ms", "summit stiffness wear rate", "summit"},
+    Term{"*/summits/step_time_s", "s", "time of the summit's stiffness step (its onset plus the drawn delay)", "summit"},
+    Term{"*/summits/step_factor", "1", "summit stiffness after its step over before (1: no step)", "summit"},
     Term{"*/summits/normal_load_n", "N", "summit normal load", "summit"},
     Term{"*/summits/sampled_stiffness_n_per_m", "N/m", "sampled tangential stiffness", "summit"},
     Term{"*/summits/interference_m", "m", "summit interference", "summit"},

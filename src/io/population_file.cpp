@@ -119,6 +119,10 @@ void write_summits(Hdf5Writer& f, const std::string& g, std::span<const Populati
     f.write(g + "/summits/lifetime_s", concatenated(pops, [](const Population& p) { return &p.lifetime_s; }));
   if (!pops.empty() && !pops.front().wear_rate_per_ms.empty())
     f.write(g + "/summits/wear_rate_per_ms", concatenated(pops, [](const Population& p) { return &p.wear_rate_per_ms; }));
+  if (!pops.empty() && !pops.front().step_factor.empty()) {
+    f.write(g + "/summits/step_time_s", concatenated(pops, [](const Population& p) { return &p.step_time_s; }));
+    f.write(g + "/summits/step_factor", concatenated(pops, [](const Population& p) { return &p.step_factor; }));
+  }
   if (sampled)
     f.write(g + "/summits/sampled_stiffness_n_per_m",
             concatenated(pops, [](const Population& p) { return &p.sampled_stiffness_n_per_m; }));

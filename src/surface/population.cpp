@@ -87,6 +87,24 @@ void draw_per_summit(const std::optional<Distribution>& law, StreamKind kind, st
   for (double& v : out) v = law->sample(engine);
 }
 
+//! Each summit's stiffness step ([steps]): three draws per summit (whether, when, by how
+//! much) whatever the outcome, so one summit's draws never move another's.
+void draw_steps(const RandomSurface& s, std::uint64_t seed, std::uint64_t realisation, Population& p, std::size_t n) {
+  p.step_time_s.clear();
+  p.step_factor.clear();
+  if (!s.steps) return;
+  RandomEngine engine = random_stream(seed, realisation, StreamKind::steps);
+  boost::random::uniform_real_distribution<double> unit(0.0, 1.0);
+  p.step_time_s.resize(n);
+  p.step_factor.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool stepped = unit(engine) < s.steps->probability;
+    p.step_time_s[i] = p.onset_s[i] + s.steps->after_onset_s.sample(engine);
+    const double factor = s.steps->factor.sample(engine);
+    p.step_factor[i] = stepped ? factor : 1.0;
+  }
+}
+
 void draw_phases(const RandomSurface& s, std::uint64_t seed, std::uint64_t realisation, Population& p, std::size_t n) {
   p.drive_phase_rad.assign(n, s.phase_rad);
   if (s.phase_rule != PhaseRule::uniform) return;
@@ -188,6 +206,9 @@ Asperity make_asperity(const RandomSurface& s, const Population& p, std::size_t 
                        ": contact lifetime " + format_number(p.lifetime_s[i]) + " s leaves no time in contact");
   }
   if (!p.wear_rate_per_ms.empty()) a.wear_rate_per_ms = p.wear_rate_per_ms[i];
+  // A step drawn after the release is dropped: the interface changes only in contact.
+  if (!p.step_factor.empty() && p.step_factor[i] != 1.0 && p.step_time_s[i] < a.release_s)
+    a.stiffness_steps.push_back({p.step_time_s[i], p.step_factor[i]});
   a.element = s.element;
   const double patch = p.contact ? p.contact->patch_radius_m[i] : 0.0;
   if (s.geometry_rule == GeometryRule::patch) a.element.length_m = a.element.width_m = std::sqrt(PI) * patch;
@@ -215,6 +236,7 @@ Population sample_population(const RandomSurface& surface, std::uint64_t seed, s
   draw_onsets(surface, seed, realisation, p, n);
   draw_per_summit(surface.lifetime, StreamKind::lifetimes, seed, realisation, n, p.lifetime_s);
   draw_per_summit(surface.wear_rate, StreamKind::wear, seed, realisation, n, p.wear_rate_per_ms);
+  draw_steps(surface, seed, realisation, p, n);
   solve_contact(surface, p);
   for (std::size_t i = 0; i < n; ++i) {
     if (!(p.load_n[i] > 0.0)) continue;

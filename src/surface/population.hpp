@@ -40,6 +40,9 @@ struct Population {
   std::vector<double> onset_s;               //!< Model 2 contact onsets t_on,i [s] (all 0 without an [onset] law)
   std::vector<double> lifetime_s;            //!< Model 2 contact lifetimes t_off,i - t_on,i [s] (empty without a [lifetime] law)
   std::vector<double> wear_rate_per_ms;      //!< Model 2 wear rates w_i [1/ms] (empty without a [wear] law)
+  //! Model 2 stiffness steps, one draw per summit (empty without [steps]): when [s] (its
+  //! onset plus the drawn delay) and k after / k before [-], 1 for a summit without a step.
+  std::vector<double> step_time_s, step_factor;
   std::vector<double> load_n;                //!< N_i per summit (0 = not in contact) [N]
   std::optional<PopulationContact> contact;  //!< with material data
   //! The asperities a run simulates: the summits in contact, in summit order.

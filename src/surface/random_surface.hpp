@@ -111,6 +111,15 @@ struct RandomSurface {
   std::optional<Distribution> lifetime;
   //! Model 2 wear rates w [1/ms], one draw per summit (the wear stream); none: no wear.
   std::optional<Distribution> wear_rate;
+  //! Model 2 stiffness steps ([steps]): each summit has one with this probability, its
+  //! delay after the onset [s] and its factor (k after / k before) drawn from these laws (the
+  //! steps stream); none: no steps.
+  struct StepLaws {
+    double probability = 0.0;
+    Distribution after_onset_s;
+    Distribution factor;
+  };
+  std::optional<StepLaws> steps;
 
   //! Mean number of summits per realisation (Poisson mean or the fixed count).
   [[nodiscard]] double mean_summit_count() const;

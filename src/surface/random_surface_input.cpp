@@ -286,6 +286,25 @@ RandomSurface read_random_surface(TomlTable& root, const std::filesystem::path& 
       wear->fail("kind", "can draw wear rates of 1000 per ms or more (up to " + format_number(s.wear_rate->upper()) +
                              "): give the law in fractions of k per ms, bounded (e.g. kind = \"uniform\", max = 0.3)");
   }
+  if (auto steps = root.table("steps")) {
+    const double probability = steps->required_number("probability");
+    if (!(probability >= 0.0 && probability <= 1.0))
+      steps->fail("probability", "= " + format_number(probability) + ": the chance that a summit's stiffness steps, in [0, 1]");
+    auto law = [&](std::string_view key) {
+      std::optional<TomlTable> table = steps->table(key);
+      if (!table) steps->fail(key, "is required: a law table (`kind` and its keys)");
+      return std::pair{Distribution::from_toml(*table, base_dir), *table};
+    };
+    auto [after_onset, after_table] = law("after_onset");
+    if (!(after_onset.lower() >= 0.0))
+      after_table.fail("kind", "can draw delays below 0 s (from " + format_number(after_onset.lower()) +
+                                   " s): a step comes after the onset (truncate with min = 0)");
+    auto [factor, factor_table] = law("factor");
+    if (!(factor.lower() > 0.0))
+      factor_table.fail("kind", "can draw factors down to " + format_number(factor.lower()) +
+                                    ": k after / k before must be > 0 (e.g. kind = \"uniform\", min = 0.85, max = 1.15)");
+    s.steps = RandomSurface::StepLaws{probability, std::move(after_onset), std::move(factor)};
+  }
   return s;
 }
 

@@ -367,6 +367,71 @@ TEST(PopulationSampling, LifetimesAndWearRatesFollowTheirLawsFromStreamsOfTheirO
   EXPECT_THROW(read_surface(LIGHT + "[wear]\nkind = \"gamma\"\nshape = 2\nscale = 0.1\n"), InputError);
 }
 
+TEST(PopulationSampling, StiffnessStepsFollowTheirLawsFromAStreamOfTheirOwn) {
+  // [steps] (docs/model.md §1.4): each summit steps with probability 0.2, a uniform delay in
+  // [0, 1 ms] after its onset, by a factor uniform in [0.85, 1.15]. Against the laws' closed
+  // forms (4 standard errors: sqrt(p (1 - p) / n), 0.3 / sqrt(12 n_stepped)); an asperity
+  // carries its summit's step exactly when it has one before its release; no other draw
+  // moves (a stream of its own); the same (seed, realisation) draws the same bits.
+  const std::string laws = "[onset]\nkind = \"uniform\"\nmin = 0\nmax = 1e-3\n"
+                           "[lifetime]\nkind = \"gamma\"\nshape = 1\nscale = 1e-3\n";
+  const std::string steps = "[steps]\nprobability = 0.2\n[steps.after_onset]\nkind = \"uniform\"\nmin = 0\nmax = 1e-3\n"
+                            "[steps.factor]\nkind = \"uniform\"\nmin = 0.85\nmax = 1.15\n";
+  const RandomSurface plain = read_surface(LIGHT + laws);
+  const RandomSurface stepping = read_surface(LIGHT + laws + steps);
+  std::size_t summits = 0, stepped = 0, carried = 0, dropped = 0;
+  double factor_sum = 0.0;
+  for (std::uint64_t r = 0; r < 30; ++r) {
+    const Population p = sample_population(plain, SEED, r), q = sample_population(stepping, SEED, r);
+    EXPECT_TRUE(same_bits(p.height_m, q.height_m));
+    EXPECT_TRUE(same_bits(p.onset_s, q.onset_s));
+    EXPECT_TRUE(same_bits(p.lifetime_s, q.lifetime_s));
+    EXPECT_TRUE(same_bits(q.step_factor, sample_population(stepping, SEED, r).step_factor));
+    ASSERT_EQ(q.step_factor.size(), q.height_m.size());
+    for (std::size_t i = 0; i < q.step_factor.size(); ++i) {
+      ++summits;
+      EXPECT_GE(q.step_time_s[i], q.onset_s[i]);
+      EXPECT_LE(q.step_time_s[i], q.onset_s[i] + 1e-3);
+      if (q.step_factor[i] == 1.0) continue;
+      ++stepped;
+      factor_sum += q.step_factor[i];
+      EXPECT_GE(q.step_factor[i], 0.85);
+      EXPECT_LE(q.step_factor[i], 1.15);
+    }
+    for (std::size_t a = 0; a < q.asperities.size(); ++a) {
+      const std::size_t summit = q.summit_of_asperity[a];
+      const Asperity& asperity = q.asperities[a];
+      EXPECT_TRUE(p.asperities[a].stiffness_steps.empty());
+      const bool expected = q.step_factor[summit] != 1.0 && q.step_time_s[summit] < asperity.release_s;
+      ASSERT_EQ(asperity.stiffness_steps.size(), expected ? 1u : 0u);
+      if (!expected) {
+        if (q.step_factor[summit] != 1.0) ++dropped;
+        continue;
+      }
+      ++carried;
+      EXPECT_EQ(asperity.stiffness_steps[0].time_s, q.step_time_s[summit]);
+      EXPECT_EQ(asperity.stiffness_steps[0].factor, q.step_factor[summit]);
+    }
+  }
+  ASSERT_GT(summits, 400u);
+  const double n = static_cast<double>(summits), share = static_cast<double>(stepped) / n;
+  EXPECT_NEAR(share, 0.2, 4.0 * std::sqrt(0.2 * 0.8 / n));
+  EXPECT_NEAR(factor_sum / static_cast<double>(stepped), 1.0, 4.0 * 0.3 / std::sqrt(12.0 * static_cast<double>(stepped)));
+  // Steps of summits released before them are dropped, the others carried: both happen here.
+  EXPECT_GT(carried, 0u);
+  EXPECT_GT(dropped, 0u);
+  // A probability outside [0, 1], a law that can draw delays below 0 or factors down to 0,
+  // and a missing law are refused.
+  const std::string factor = "[steps.factor]\nkind = \"uniform\"\nmin = 0.85\nmax = 1.15\n";
+  const std::string delay = "[steps.after_onset]\nkind = \"uniform\"\nmin = 0\nmax = 1e-3\n";
+  EXPECT_THROW(read_surface(LIGHT + "[steps]\nprobability = 1.5\n" + delay + factor), InputError);
+  EXPECT_THROW(read_surface(LIGHT + "[steps]\nprobability = 0.2\n[steps.after_onset]\nkind = \"normal\"\nmean = 1e-4\nstd = 1e-4\n" + factor),
+               InputError);
+  EXPECT_THROW(read_surface(LIGHT + "[steps]\nprobability = 0.2\n" + delay + "[steps.factor]\nkind = \"uniform\"\nmin = 0\nmax = 1.1\n"),
+               InputError);
+  EXPECT_THROW(read_surface(LIGHT + "[steps]\nprobability = 0.2\n" + delay), InputError);
+}
+
 TEST(PopulationContact, LoadSpreadGivesEverySummitALoadFromItsHeight) {
   // [load] rule = "spread" (MODEL.md §4.4): every summit is in contact and an asperity, its
   // height above the separation d = mean + std δ, and its load follows from its height by
