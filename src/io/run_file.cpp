@@ -1,6 +1,7 @@
 #include "io/run_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/build_info.hpp"
 #include "core/creation_time.hpp"
@@ -16,6 +17,34 @@
 namespace stengmc {
 
 namespace {
+
+//! The evolving contact's per-asperity parameters (docs/model.md §1.4), each only where some
+//! asperity has it, so other runs' files stay as they were: the truth a tracker is checked
+//! against. Steps are a CF contiguous ragged array (step_count per asperity).
+void write_evolving_contact(Hdf5Writer& file, const Study& study) {
+  const std::vector<Asperity>& asperities = study.asperities;
+  if (std::any_of(asperities.begin(), asperities.end(), [](const Asperity& a) { return std::isfinite(a.release_s); })) {
+    // Finite in the file: an asperity still in contact at the end has release = the run's end, released = 0.
+    const double end_s = study.duration_s;
+    file.write("/asperity/release", column(asperities, [&](const Asperity& a) { return std::min(a.release_s, end_s); }));
+    file.write("/asperity/released",
+               column(asperities, [&](const Asperity& a) { return a.release_s < end_s ? 1.0 : 0.0; }));
+  }
+  if (std::any_of(asperities.begin(), asperities.end(), [](const Asperity& a) { return a.wear_rate_per_ms != 0.0; }))
+    file.write("/asperity/wear_rate", column(asperities, [](const Asperity& a) { return a.wear_rate_per_ms; }));
+  if (std::none_of(asperities.begin(), asperities.end(), [](const Asperity& a) { return !a.stiffness_steps.empty(); })) return;
+  std::vector<double> times, factors;
+  for (const Asperity& a : asperities)
+    for (const StiffnessStep& s : a.stiffness_steps) {
+      times.push_back(s.time_s);
+      factors.push_back(s.factor);
+    }
+  file.write("/asperity/step_count",
+             column(asperities, [](const Asperity& a) { return static_cast<double>(a.stiffness_steps.size()); }));
+  file.attribute("/asperity/step_count", "sample_dimension", "step");
+  file.write("/step/time", times);
+  file.write("/step/factor", factors);
+}
 
 void write_model(Hdf5Writer& file, const Study& study) {
   file.group("/model");
@@ -122,6 +151,7 @@ void write_run_file(const std::string& path, const Study& study, const RunResult
   // Only where some asperity comes into contact late: files of studies without onsets stay as they were.
   if (std::any_of(study.asperities.begin(), study.asperities.end(), [](const Asperity& a) { return a.onset_s != 0.0; }))
     file.write("/asperity/onset", column(study.asperities, [](const Asperity& a) { return a.onset_s; }));
+  write_evolving_contact(file, study);
   std::vector<StengElement> elements;
   for (const Asperity& a : study.asperities) elements.push_back(a.element);
   write_elements(file, elements);

@@ -420,6 +420,42 @@ def check_not_a_product(path):
               "sweep_repeated.h5: selecting count 2 does not give grid points 0 and 2")
 
 
+# An evolving contact (docs/model.md §1.4): a release, wear and two stiffness steps, whose
+# per-asperity parameters a run file records (steps as a CF contiguous ragged array).
+EVOLVING = """duration_s = 20e-6
+sample_rate_hz = 100e6
+seed = 5
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+[surface]
+[surface.defaults]
+length_m = 50e-6
+[[surface.asperity]]
+stiffness_n_per_m = 100
+wear_rate_per_ms = 0.2
+stiffness_steps = [[5e-6, 1.1], [12e-6, 0.95]]
+[[surface.asperity]]
+stiffness_n_per_m = 60
+onset_s = 2e-6
+release_s = 10e-6
+"""
+
+
+def check_evolving(path):
+    """The evolving contact's truth in a run file: release (finite, the run's end where never
+    released) with its flag, wear rates, and steps as a ragged array over `step`."""
+    with h5py.File(path, "r") as f:
+        check(np.array_equal(f["asperity/release"][()], [20e-6, 10e-6]) and np.array_equal(f["asperity/released"][()], [0, 1]),
+              f"{path}: /asperity/release and released do not hold the study's release_s")
+        check(np.array_equal(f["asperity/wear_rate"][()], [0.2, 0.0]), f"{path}: /asperity/wear_rate is not the study's")
+        counts = f["asperity/step_count"]
+        check(text(counts.attrs.get("sample_dimension")) == "step", f"{path}: step_count has no sample_dimension = step")
+        check(int(np.sum(counts[()])) == f["step/time"].shape[0] == 2, f"{path}: step_count does not sum to the steps")
+        check(np.array_equal(f["step/time"][()], [5e-6, 12e-6]) and np.array_equal(f["step/factor"][()], [1.1, 0.95]),
+              f"{path}: /step/time and factor are not the study's stiffness_steps")
+
+
 def device_study():
     """The known device of the inverse tests (tests/support/known_device.toml, shared with
     tests/support/inverse_device.hpp) with two asperities and the quick prior's bank."""
@@ -455,6 +491,9 @@ def main():
         run(binary, "run", study("paper/fig6_vb1.toml"), "-o", out("flagged.h5"), cwd=work)
         run(binary, "run", study("surfaces/gw_vb10.toml"), "--realisation", "3", "-o", out("random.h5"), cwd=work)
         run(binary, "circuit", out("run.h5"), "-R", "1e6", "-o", out("circuit.h5"), cwd=work)
+        with open(out("evolving.toml"), "w") as f:
+            f.write(EVOLVING)
+        run(binary, "run", out("evolving.toml"), "-o", out("evolving.h5"), cwd=work)
         run(binary, "spectrum", out("run.h5"), "--settings", study("paper/fig6_vb1_l50.toml"), "-o", out("spectrum.h5"),
             cwd=work)
         run(binary, "surface", os.path.join(SOURCE_DIR, "surfaces", "pet_on_steel_gw.toml"), "--realisations", "2",
@@ -483,7 +522,7 @@ def main():
         run(binary, "invert", out("record.csv"), "--known", out("device.toml"), "--bank", out("bank.h5"),
             "-o", out("inverse.h5"), cwd=work)
 
-        files = ["run.h5", "flagged.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5",
+        files = ["run.h5", "flagged.h5", "evolving.h5", "random.h5", "circuit.h5", "spectrum.h5", "surface.h5", "single.h5", "sweep.h5",
                  "sweep2.h5", "sweep_repeated.h5", "bank.h5", "inverse.h5"]
         for name in files:
             check_every_group(out(name))
@@ -531,6 +570,9 @@ def main():
                   and text(h["valid_time"].attrs.get("units")) == "s",
                   "flagged.h5: /valid_time is not the leading samples of /time")
         expect_coordinate(f, "/", "valid_time", "/valid_time")
+
+        check_evolving(out("evolving.h5"))
+        expect_dims(out("evolving.h5"), "/step", "time", ("step",))
 
         c = out("circuit.h5")
         expect_coordinate(c, "/", "time", "/time")
