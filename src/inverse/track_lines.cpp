@@ -128,6 +128,16 @@ WindowLines LineDetector::detect(std::span<const double> window) const {
     w.stiffness_high = stiffness_at(device_, f[i] + Z90 * se[i]);
     out.lines.push_back(w);
   }
+  // A strong ringing's harmonics (the element's capacitance is not linear in x) are no
+  // asperities: a line within half a resolution cell of 2 f or 3 f of a line 3 x stronger goes.
+  const double cell = settings_.sample_rate_hz / static_cast<double>(window.size());
+  std::vector<WindowLine> fundamentals = out.lines;
+  std::erase_if(out.lines, [&](const WindowLine& l) {
+    return std::any_of(fundamentals.begin(), fundamentals.end(), [&](const WindowLine& g) {
+      return g.snr >= 3.0 * l.snr && (std::abs(l.frequency_hz - 2.0 * g.frequency_hz) < 0.5 * cell ||
+                                      std::abs(l.frequency_hz - 3.0 * g.frequency_hz) < 0.5 * cell);
+    });
+  });
   if (settings_.dynamic_range > 0.0 && !out.lines.empty()) {
     double strongest = 0.0;
     for (const WindowLine& l : out.lines) strongest = std::max(strongest, l.snr);

@@ -30,6 +30,13 @@ double recent_level(const Track& t) {
   return levels[levels.size() / 2];
 }
 
+//! Unexcited, a step rings the asperity freely at its new stiffness: its line decays at c/2m.
+//! A window where an onset or step starts part-way holds lines that are no ringing (the
+//! plateau's jump, mixtures), with dampings far from it.
+bool free_ringing(const WindowLine& l, const LinkSettings& s) {
+  return std::abs(l.damping_per_s - s.free_damping_per_s) <= 0.6 * s.free_damping_per_s;
+}
+
 void add_sighting(LiveTrack& t, std::size_t window, const WindowLine& line) {
   t.track.sightings.push_back({window, line});
   if (t.track.sightings.size() <= 3) t.track.onset_level = std::max(t.track.onset_level, line.snr);
@@ -45,7 +52,7 @@ void merge_steps_of_silent_tracks(std::vector<LiveTrack>& tracks, const LinkSett
     Track& born = tracks[b].track;
     if (born.sightings.size() < s.min_sightings || born.sightings.front().window == 0) continue;
     const auto clear = std::find_if(born.sightings.begin(), born.sightings.end(),
-                                    [&](const TrackSighting& x) { return x.line.snr >= s.reacquire_snr; });
+                                    [&](const TrackSighting& x) { return x.line.snr >= s.reacquire_snr && free_ringing(x.line, s); });
     if (clear == born.sightings.end()) continue;
     const std::size_t start = born.sightings.front().window;
     std::size_t best = tracks.size();
@@ -140,7 +147,8 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
         for (std::size_t c = 0; c < free_lines.size(); ++c) {
           const WindowLine& l = *lines[free_lines[c]];
           const double rel = std::abs(l.frequency_hz - f0) / f0;
-          if (l.snr >= s.reacquire_snr && rel <= s.step_fraction + s.drift_per_window * elapsed)
+          if (l.snr >= s.reacquire_snr && (!s.hold_silent || free_ringing(l, s)) &&
+              rel <= s.step_fraction + s.drift_per_window * elapsed)
             step_cost(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rel;
         }
       }

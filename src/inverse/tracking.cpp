@@ -282,15 +282,21 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
       const double centre = r.windows[w].centre_s;
       if (centre > release_s && w > track.sightings.front().window) break;
       if (next < heard_until && track.sightings[next].window == w) {
-        last = &track.sightings[next].line;
-        last_time = centre;
+        const WindowLine& seen = track.sightings[next].line;
+        // Held afterwards: the last clear sighting (a fading ringing's last ones are the least
+        // precise), or any after a step (the old stiffness is gone).
+        const bool stepped = std::any_of(track.steps.begin(), track.steps.end(), [&](const StepMark& m) { return m.sighting == next; });
+        if (!last || stepped || seen.snr >= 10.0 || last->snr < 10.0) {
+          last = &seen;
+          last_time = centre;
+        }
         ++next;
-        r.frequency[t][w] = last->frequency_hz;
-        r.frequency_low[t][w] = last->frequency_hz - Z90 * last->frequency_se_hz;
-        r.frequency_high[t][w] = last->frequency_hz + Z90 * last->frequency_se_hz;
-        r.stiffness[t][w] = last->stiffness_n_per_m;
-        r.stiffness_low[t][w] = last->stiffness_low;
-        r.stiffness_high[t][w] = last->stiffness_high;
+        r.frequency[t][w] = seen.frequency_hz;
+        r.frequency_low[t][w] = seen.frequency_hz - Z90 * seen.frequency_se_hz;
+        r.frequency_high[t][w] = seen.frequency_hz + Z90 * seen.frequency_se_hz;
+        r.stiffness[t][w] = seen.stiffness_n_per_m;
+        r.stiffness_low[t][w] = seen.stiffness_low;
+        r.stiffness_high[t][w] = seen.stiffness_high;
       } else if (last) {
         const double wear = settings.max_wear_per_ms * (centre - last_time) / 1e-3;
         r.stiffness[t][w] = last->stiffness_n_per_m * (1.0 - 0.5 * std::min(1.0, wear));
