@@ -97,6 +97,9 @@ def tracking_figure(path):
         ax.plot(t, np.where(heard, np.nan, k[i]), "--", color=c, lw=0.8)
     for kind, time in zip(kinds, times):
         ax.axvline(time, color="red" if kind == "step" else "grey", lw=0.6, ls="-" if kind == "step" else ":")
+    heard_k = k[np.isfinite(freq) & np.isfinite(k)]
+    if heard_k.size:  # a held interval can grow wide: the axis follows the heard values
+        ax.set_ylim(0.8 * heard_k.min(), 1.2 * heard_k.max())
     ax.set_ylabel("stiffness k [N/m]")
     ax.set_xlabel("time [µs]")
     if k.shape[0] <= 12:

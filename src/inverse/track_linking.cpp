@@ -137,7 +137,9 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
     for (std::size_t r = 0; r < live.size(); ++r)
       if (!track_seen[r] && !tracks[live[r]].track.released && tracks[live[r]].track.sightings.size() >= s.min_sightings)
         step_tracks.push_back(live[r]);
-    if (!free_lines.empty() && !step_tracks.empty()) {
+    // (Unexcited only: a driven line is followed through a step by the gate, which its wander
+    // widens, and the step found inside the track: track_steps.hpp.)
+    if (s.hold_silent && !free_lines.empty() && !step_tracks.empty()) {
       Eigen::MatrixXd step_cost = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(step_tracks.size()),
                                                             static_cast<Eigen::Index>(free_lines.size()), FORBIDDEN);
       for (std::size_t r = 0; r < step_tracks.size(); ++r) {
@@ -187,7 +189,7 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
   std::vector<Track> out;
   for (LiveTrack& t : tracks)
     if (t.track.sightings.size() >= s.min_sightings) {
-      if (!s.hold_silent && t.closed) find_free_ringdown(t.track, s.free_damping_per_s);
+      if (!s.hold_silent) find_free_ringdown(t.track, s.free_damping_per_s);  // at the record's end too
       out.push_back(std::move(t.track));
     }
   return out;

@@ -60,6 +60,35 @@ void find_steps(Track& track, const std::vector<TrackWindow>& windows, std::size
     const double n = static_cast<double>(half);
     statistic[i] = std::abs(after - before) / n / std::sqrt(correlation * (v_before + v_after) / n);
   }
+  // A long track (excited: a driven line wanders slowly, over more windows than its windows
+  // overlap) is also judged against itself: the boundary's difference must stand out of all its
+  // boundaries' differences (robust z: the median and 1.4826 MAD of them), so a wander that
+  // is the track's habit makes no step.
+  if (heard >= 6 * half) {
+    std::vector<double> signed_differences;
+    for (std::size_t i = half; i + half <= heard; i += half) {
+      double before = 0.0, after = 0.0;
+      for (std::size_t j = 0; j < half; ++j) {
+        before += s[i - half + j].line.frequency_hz;
+        after += s[i + j].line.frequency_hz;
+      }
+      signed_differences.push_back((after - before) / static_cast<double>(half));
+    }
+    const double centre = median(signed_differences);
+    std::vector<double> deviations;
+    for (double d : signed_differences) deviations.push_back(std::abs(d - centre));
+    const double spread = 1.4826 * median(deviations);
+    if (spread > 0.0)
+      for (std::size_t i = half; i + half <= heard; ++i) {
+        double before = 0.0, after = 0.0;
+        for (std::size_t j = 0; j < half; ++j) {
+          before += s[i - half + j].line.frequency_hz;
+          after += s[i + j].line.frequency_hz;
+        }
+        const double robust = std::abs((after - before) / static_cast<double>(half) - centre) / spread;
+        statistic[i] = std::min(statistic[i], robust);
+      }
+  }
   auto near_known = [&](std::size_t i) {
     return std::any_of(track.steps.begin(), track.steps.end(), [&](const StepMark& m) {
       return (m.sighting > i ? m.sighting - i : i - m.sighting) < half;

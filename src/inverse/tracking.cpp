@@ -224,7 +224,9 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   LinkSettings link;
   link.gate_floor_hz = r.excited ? device.model.damping_n_s_per_m / (4.0 * std::numbers::pi * device.asperity.mass_kg) : 0.0;
   link.drift_per_window = 0.5 * settings.max_wear_per_ms * hop_s / 1e-3;
-  link.max_missed = r.excited ? std::max(settings.max_missed, lag + 1) : settings.max_missed;
+  // Excited, a driven line fades for tens of us at a time (its envelope is random): a track
+  // outlives four window overlaps unheard. Its release is timed by its ring-down, not by this.
+  link.max_missed = r.excited ? std::max(settings.max_missed, 4 * lag) : settings.max_missed;
   link.hold_silent = !r.excited;
   // A track must outlast a window: overlapping windows share samples, so one random feature
   // (the off-resonance response an excited asperity adds, which ESPRIT also fits; a noise
