@@ -17,8 +17,9 @@ struct LineDetectorSettings {
   double band_high_hz = 0.0;      //!< highest [Hz]
   double noise_sigma_v = 0.0;     //!< white noise standard deviation of the record [V]
   double sample_rate_hz = 0.0;
-  //! A line is detected when its matched-filter amplitude SNR z = a sqrt(sum e^{-2dt} / 2) / sigma
-  //! is at least this: with ~T B = 20 independent frequency cells per window, noise alone reaches
+  //! A line is detected when its matched-filter amplitude SNR z = a sqrt(sum e^{-2dt} / 2) / sigma_floor
+  //! is at least this (sigma_floor: the larger of noise_sigma_v and the in-band floor the fitted
+  //! lines leave): with ~T B = 20 independent frequency cells per window, noise alone reaches
   //! z = 5 with probability ~20 e^{-12.5} = 7e-5 per window.
   double threshold_snr = 5.0;
   //! Lines down to threshold_snr - grey_snr are kept as candidates for the count's interval.
@@ -34,13 +35,14 @@ struct LineDetectorSettings {
   double dynamic_range = 0.0;
 };
 
-//! One ESPRIT line of a window with what it implies.
+//! One ESPRIT line of a window with what it implies (stiffness_low/high: 90 %, from the Cramer-Rao
+//! error; tracking scales that error to each track's scatter afterwards).
 struct WindowLine {
   double frequency_hz = 0.0;
   double frequency_se_hz = 0.0;   //!< Cramer-Rao standard error of the frequency [Hz]
   double amplitude_v = 0.0;       //!< amplitude at the window's first sample [V]
   double damping_per_s = 0.0;     //!< envelope decay rate [1/s]
-  double snr = 0.0;               //!< matched-filter amplitude SNR z (see threshold_snr)
+  double snr = 0.0;               //!< matched-filter amplitude SNR z against the window's floor (see threshold_snr)
   double stiffness_n_per_m = 0.0; //!< k = m ((2 pi f)^2 + (c/2m)^2) [N/m]
   double stiffness_low = 0.0;     //!< 90 % interval of k from f +- 1.645 se [N/m]
   double stiffness_high = 0.0;

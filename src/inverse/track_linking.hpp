@@ -3,10 +3,11 @@
 //! global-nearest-neighbour tracker (Blackman & Popoli, "Design and Analysis of Modern
 //! Tracking Systems", Artech House 1999, ch. 6-7) whose per-window assignment is the
 //! Hungarian method (Kuhn 1955, Munkres 1957; spectral/assignment.hpp), with birth, death
-//! after G missed windows, and two things the physics of the contact adds: a track whose
-//! line vanishes while a new one appears within a stiffness step's reach is one asperity
-//! whose stiffness stepped, and a burst of ringing on a known track as strong as its onset's
-//! is its release (a released asperity rings from its full deflection mu N / k, as at onset).
+//! after G missed windows (excited) or held silent tracks (unexcited), and what the physics of
+//! the contact adds: unexcited, a silent track re-heard by a free ringing within a stiffness
+//! step's reach is one asperity whose stiffness stepped, and re-heard by a burst as strong as
+//! its onset's is its release (a released asperity rings from its full deflection mu N / k, as
+//! at onset); excited, a track that ends in a free ring-down was released there.
 #include <cstddef>
 #include <vector>
 
@@ -34,7 +35,7 @@ struct LinkSettings {
   double step_fraction = 0.08;
   //! A burst whose level (snr) reaches this fraction of the track's onset level is a release.
   double release_level_fraction = 0.5;
-  //! An excited track's burst: its level over the median of its last levels.
+  //! A burst on a track: its level over the median of its last levels (or any line after silence).
   double burst_ratio = 3.0;
   //! Tracks seen in fewer windows are dropped as false alarms (a real event rings >= 20 us).
   std::size_t min_sightings = 2;
@@ -63,7 +64,6 @@ struct Track {
   bool released = false;                  //!< its release was heard (burst)
   bool ended = false;                     //!< died (missed > G) before the record's end
   double onset_level = 0.0;               //!< largest snr of its first three sightings
-  bool born_from_step = false;            //!< never: steps continue the stepping track
 };
 
 //! Excited regime: a track whose last sightings (at least three) are all a free ringing
