@@ -72,6 +72,14 @@ void merge_steps_of_silent_tracks(std::vector<LiveTrack>& tracks, const LinkSett
   }
 }
 
+//! Excited, an asperity in contact is driven and heard in most windows: a track heard in
+//! fewer than min_duty of the windows it spans is random lines the wide gate strung together.
+bool heard_enough(const Track& t, const LinkSettings& s) {
+  if (s.hold_silent) return true;
+  const double span = static_cast<double>(t.sightings.back().window - t.sightings.front().window + 1);
+  return static_cast<double>(t.sightings.size()) >= s.min_duty * span;
+}
+
 }  // namespace
 
 std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const LinkSettings& s) {
@@ -188,7 +196,7 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
   if (s.hold_silent) merge_steps_of_silent_tracks(tracks, s);
   std::vector<Track> out;
   for (LiveTrack& t : tracks)
-    if (t.track.sightings.size() >= s.min_sightings) {
+    if (t.track.sightings.size() >= s.min_sightings && heard_enough(t.track, s)) {
       if (!s.hold_silent) find_free_ringdown(t.track, s.free_damping_per_s);  // at the record's end too
       out.push_back(std::move(t.track));
     }

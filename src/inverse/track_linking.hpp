@@ -41,6 +41,8 @@ struct LinkSettings {
   std::size_t min_sightings = 2;
   //! Least snr of a line that takes up a track after two or more missed windows.
   double reacquire_snr = 10.0;
+  //! Excited: least share of the windows a track spans in which it must be heard.
+  double min_duty = 0.5;
   //! c / 2m of the device: the damping of a free ringing [1/s].
   double free_damping_per_s = 0.0;
 };
