@@ -27,7 +27,7 @@ from figure_checks import figure_problems  # noqa: E402
 from stengmc_h5 import attribute  # noqa: E402
 
 PLOTTED = ("stengmc-run", "stengmc-circuit", "stengmc-spectrum", "stengmc-surface", "stengmc-ensemble",
-           "stengmc-inverse")
+           "stengmc-inverse", "stengmc-tracking")
 
 
 def expected_mhz(path):

@@ -13,5 +13,6 @@ bash scripts/run_paper_studies.sh
 bash scripts/run_surface_examples.sh
 bash scripts/run_ensemble_examples.sh
 bash scripts/run_inverse_demo.sh
+bash scripts/run_tracking_demo.sh
 echo
-echo "All results: $(realpath results)/{paper,surfaces,ensembles,inverse_demo}/ (*.h5 and *.png)"
+echo "All results: $(realpath results)/{paper,surfaces,ensembles,inverse_demo,tracking_demo}/ (*.h5 and *.png)"

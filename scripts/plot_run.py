@@ -8,7 +8,8 @@
 
 `stengmc surface` files (file_type "stengmc-surface") go to plot_surface.py, ensemble
 files (file_type "stengmc-ensemble") to plot_ensemble.py, `stengmc invert` files
-(file_type "stengmc-inverse") to plot_inverse.py.
+(file_type "stengmc-inverse") to plot_inverse.py, `stengmc track` files
+(file_type "stengmc-tracking") to plot_tracking.py.
 
 Reads only the file layout documented in the README; run with Debian's python3
 (python3-h5py, python3-matplotlib).
@@ -27,6 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_ensemble  # noqa: E402  (beside this script)
 import plot_inverse  # noqa: E402  (beside this script)
+import plot_tracking  # noqa: E402  (beside this script)
 import plot_spectrum  # noqa: E402  (beside this script)
 import plot_surface  # noqa: E402  (beside this script)
 from figure_style import micro, unit  # noqa: E402
@@ -59,7 +61,7 @@ def figures(path):
     go to their scripts. Raises what h5py raises on a file that lacks what it promises."""
     with h5py.File(path, "r") as peek:
         kind = attribute(peek, "file_type")
-    for module in (plot_surface, plot_ensemble, plot_inverse):
+    for module in (plot_surface, plot_ensemble, plot_inverse, plot_tracking):
         if kind == module.FILE_TYPE:
             return module.figures(path)
     f = open_checked(path)

@@ -19,6 +19,7 @@ void add_spectrum_command(CLI::App& app);
 void add_surface_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_invert_command(CLI::App& app);
+void add_track_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_status_command(CLI::App& app);
 void add_export_netlist_command(CLI::App& app);

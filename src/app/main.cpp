@@ -98,6 +98,7 @@ int run_command_line(int argc, char** argv) {
   stengmc::app::add_plot_command(app);
   stengmc::app::add_calibrate_command(app);
   stengmc::app::add_invert_command(app);
+  stengmc::app::add_track_command(app);
   stengmc::app::add_merge_command(app);
   stengmc::app::add_status_command(app);
   stengmc::app::add_export_netlist_command(app);

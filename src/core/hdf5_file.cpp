@@ -198,15 +198,22 @@ void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<do
 }
 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units,
-                       std::optional<std::string_view> long_name) {
-  const std::size_t columns = rows.empty() ? 0 : rows.front().size();
+                       std::optional<std::string_view> long_name, std::optional<std::size_t> gap_columns) {
+  const std::size_t columns = gap_columns ? *gap_columns : rows.empty() ? 0 : rows.front().size();
   std::vector<double> flat;
   flat.reserve(rows.size() * columns);
   for (const auto& row : rows) {
     if (row.size() != columns) throw Error(path + ": rows of different lengths");
     flat.insert(flat.end(), row.begin(), row.end());
   }
-  check_finite(path, flat);
+  if (gap_columns) {
+    for (std::size_t i = 0; i < flat.size(); ++i)
+      if (std::isinf(flat[i]))
+        throw Error("refusing to write an infinite value into " + path + " (element " + std::to_string(i) +
+                    "); no output was written");
+  } else {
+    check_finite(path, flat);
+  }
   guarded("cannot write " + path, [&] {
     H5::DataSet& dataset = create_dataset(path, H5::PredType::NATIVE_DOUBLE, {rows.size(), columns}, untimed_dataset());
     if (!flat.empty()) dataset.write(flat.data(), H5::PredType::NATIVE_DOUBLE);
@@ -263,6 +270,12 @@ void Hdf5Writer::write(const std::string& path, std::span<const double> values) 
 void Hdf5Writer::write(const std::string& path, const std::vector<std::vector<double>>& rows) {
   const DatasetDescription d = described(path);
   write(path, rows, d.units, d.long_name);
+  comment(path, d);
+}
+
+void Hdf5Writer::write_with_gaps(const std::string& path, const std::vector<std::vector<double>>& rows, std::size_t columns) {
+  const DatasetDescription d = described(path);
+  write(path, rows, d.units, d.long_name, columns);
   comment(path, d);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 //! Thin HDF5 (C++ API) wrappers: datasets carry a `units` attribute, groups are made on
-//! demand, nothing non-finite is ever written, and files appear only when complete.
+//! demand, nothing non-finite is ever written (but NaN for what is absent: write_with_gaps),
+//! and files appear only when complete.
 #include <H5Cpp.h>
 
 #include <cstdint>
@@ -54,6 +55,10 @@ class Hdf5Writer {
   void write(const std::string& path, const std::vector<std::vector<double>>& rows);
   void write(const std::string& path, std::span<const std::int64_t> values);
   void write(const std::string& path, const std::vector<std::string>& values);
+  //! A described 2-D dataset [rows][columns] that marks what is absent with NaN (the only
+  //! non-finite value written anywhere; CF readers take NaN as missing): a track's stiffness in
+  //! the windows it is not in contact. Every row has `columns` values (none: extent rows x columns).
+  void write_with_gaps(const std::string& path, const std::vector<std::vector<double>>& rows, std::size_t columns);
   //! Described, but with a unit the Describer cannot know (one that depends on the data).
   void write_with_units(const std::string& path, std::span<const double> values, std::string_view units);
 
@@ -86,8 +91,9 @@ class Hdf5Writer {
   //! extent `shape` when one is given (DatasetDescription::shape).
   void write(const std::string& path, std::span<const double> values, std::string_view units,
              std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape = {});
+  //! With gap_columns, NaN is written (write_with_gaps) and the extent is rows x gap_columns.
   void write(const std::string& path, const std::vector<std::vector<double>>& rows, std::string_view units,
-             std::optional<std::string_view> long_name);
+             std::optional<std::string_view> long_name, std::optional<std::size_t> gap_columns = std::nullopt);
   void write(const std::string& path, std::span<const std::int64_t> values, std::string_view units,
              std::optional<std::string_view> long_name, const std::vector<std::size_t>& shape = {});
   void write(const std::string& path, const std::vector<std::string>& values, std::string_view units,

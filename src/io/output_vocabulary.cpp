@@ -38,6 +38,9 @@ constexpr std::string_view DECIBEL_COMMENT = "decibels of a power ratio, 10 log1
 //! The law parameters' units depend on the law's family (and the bank's on its prior's).
 constexpr std::string_view FIRST_UNITS = "median [N/m] for a lognormal law, shape [1] for gamma and weibull";
 constexpr std::string_view SECOND_UNITS = "sigma_log [1] for a lognormal law, scale [N/m] for gamma and weibull";
+//! The tracking file's track x window tables mark what is absent with NaN.
+constexpr std::string_view TRACK_GAPS = "NaN where the track's asperity is not in contact";
+constexpr std::string_view LINE_GAPS = "NaN where the track's line was not heard (or after its release)";
 constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its parameter (the study key's unit)";
 
 // The dimensions, one name per axis kind across the files:
@@ -54,6 +57,7 @@ constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its par
 //                      it after a lone swept key, io/ensemble_coordinates); parameter:
 //                      swept or drawn parameters (coordinate: their names)
 //   record             inverse: records (measured signals) or calibration records
+//   track, event, segment  tracking: tracks, their events and stiffness segments
 constexpr std::array TERMS{
     // run file (and `circuit` file): the realisation
     Term{"/time", "s", "time", "time"},
@@ -249,6 +253,44 @@ constexpr std::array TERMS{
     Term{"/inverse/traces/*/time", "s", "time", "time"},
     Term{"/inverse/traces/*/voltage", "V", "recorded voltage", "time"},
     Term{"/inverse/traces/*/model", "V", "fitted record model", "time"},
+    // tracking file (`stengmc track`)
+    Term{"/tracking/window_time", "s", "window centre time", "window_time"},
+    Term{"/tracking/window_start", "s", "time of the window's first sample", "window_time"},
+    Term{"/tracking/window_mean", "V", "mean voltage of the window (the plateau)", "window_time"},
+    Term{"/tracking/noise_floor", "V", "noise level the window's lines were judged against", "window_time"},
+    Term{"/tracking/count", "1", "asperities in contact (tracks)", "window_time"},
+    Term{"/tracking/count_low", "1", "lower end of the count's 90 % interval", "window_time"},
+    Term{"/tracking/count_high", "1", "upper end of the count's 90 % interval", "window_time"},
+    Term{"/tracking/naive_count", "1", "naive FFT peak count of the window", "window_time"},
+    Term{"/tracking/track", "1", "track index", "track"},
+    Term{"/tracking/error_inflation", "1", "factor the track's Cramer-Rao errors were scaled by to its scatter", "track"},
+    Term{"/tracking/stiffness_n_per_m", "N/m", "stiffness of the track's asperity", "track window_time", TRACK_GAPS},
+    Term{"/tracking/stiffness_low", "N/m", "lower end of the stiffness's 90 % interval", "track window_time", TRACK_GAPS},
+    Term{"/tracking/stiffness_high", "N/m", "upper end of the stiffness's 90 % interval", "track window_time", TRACK_GAPS},
+    Term{"/tracking/frequency_hz", "Hz", "frequency of the track's line", "track window_time", LINE_GAPS},
+    Term{"/tracking/frequency_low", "Hz", "lower end of the frequency's 90 % interval", "track window_time", LINE_GAPS},
+    Term{"/tracking/frequency_high", "Hz", "upper end of the frequency's 90 % interval", "track window_time", LINE_GAPS},
+    Term{"/tracking/events/kind", "1", "event kind (onset, release, step)", "event"},
+    Term{"/tracking/events/time_s", "s", "event time", "event"},
+    Term{"/tracking/events/time_low_s", "s", "earliest time the windows allow", "event"},
+    Term{"/tracking/events/time_high_s", "s", "latest time the windows allow", "event"},
+    Term{"/tracking/events/track", "1", "index of the event's track", "event"},
+    Term{"/tracking/segments/track", "1", "index of the segment's track", "segment"},
+    Term{"/tracking/segments/start_s", "s", "first window centre of the segment", "segment"},
+    Term{"/tracking/segments/end_s", "s", "last window centre of the segment", "segment"},
+    Term{"/tracking/segments/windows", "1", "windows averaged", "segment"},
+    Term{"/tracking/segments/stiffness_n_per_m", "N/m", "stiffness between two events of the track", "segment"},
+    Term{"/tracking/segments/stiffness_low", "N/m", "lower end of its 90 % interval", "segment"},
+    Term{"/tracking/segments/stiffness_high", "N/m", "upper end of its 90 % interval", "segment"},
+    Term{"/tracking/segments/frequency_hz", "Hz", "mean frequency of the segment", "segment"},
+    Term{"/tracking/lines/window", "1", "index of the line's window", "line"},
+    Term{"/tracking/lines/frequency_hz", "Hz", "ESPRIT line frequency", "line"},
+    Term{"/tracking/lines/frequency_se_hz", "Hz", "Cramer-Rao standard error of the frequency", "line"},
+    Term{"/tracking/lines/amplitude_v", "V", "line amplitude at the window's first sample", "line"},
+    Term{"/tracking/lines/snr", "1", "matched-filter amplitude signal-to-noise ratio", "line"},
+    Term{"/tracking/lines/detected", "1", "1 when above the detection threshold (else a candidate)", "line"},
+    Term{"/tracking/record/time", "s", "time", "time"},
+    Term{"/tracking/record/voltage", "V", "recorded voltage", "time"},
     // calibration bank
     Term{"/atoms/pi_nodes", "1", "Pi of each node of the shape family (belt-carried stretch, rad)", "pi_node"},
     Term{"/atoms/zeta_nodes", "1", "zeta of each node (damping ratio)", "zeta_node"},

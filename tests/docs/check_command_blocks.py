@@ -55,6 +55,8 @@ COMMANDS = {
         "2000 simulated records (~3 min); InverseDemo.CalibrateInvertAndRender runs calibrate and invert on the demo device",
     "./build/src/stengmc invert measured.csv --known studies/inverse/device_vb10.toml --out inverse.h5 --figures": USER_DATA,
     "./build/src/stengmc --help": RUN,
+    "./build/src/stengmc run studies/monitoring/record_unexcited.toml -o monitoring_unexcited.h5": RUN,
+    "./build/src/stengmc track monitoring_unexcited.h5 --known studies/monitoring/device_unexcited.toml -o monitoring_track.h5 --figures": RUN,
     "PYTHONPATH=build/python /usr/bin/python3 -c \"import stengmc; print(stengmc.load_study('studies/paper/fig2_k155.toml').run())\"": RUN,
     "./build/src/stengmc run studies/circuits/paper_resistor.toml": RUN,
     "./build/src/stengmc run studies/circuits/bridge_rectifier.toml": RUN,

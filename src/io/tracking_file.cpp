@@ -1,0 +1,117 @@
+#include "io/tracking_file.hpp"
+
+#include "core/hdf5_file.hpp"
+#include "io/output_vocabulary.hpp"
+#include "io/run_file.hpp"
+
+namespace stengmc {
+
+void write_tracking_file(const std::string& path, const TrackingFileContext& context, const TrackingResult& r) {
+  Hdf5Writer f(path, describe_output);
+  write_provenance(f, {.file_type = "stengmc-tracking",
+                       .input_file = context.known_file,
+                       .input_text = context.known_text,
+                       .seed = 0,
+                       .surface_file = "",
+                       .surface_text = "",
+                       .auxiliary_inputs = ""});
+  const double step = context.times_s.size() > 1 ? context.times_s[1] - context.times_s[0] : 0.0;
+  f.attribute("/", "record", context.record);
+  f.attribute("/", "regime", r.excited ? "excited" : "unexcited");
+  f.attribute("/", "window_s", static_cast<double>(r.windowing.length) * step);
+  f.attribute("/", "hop_s", static_cast<double>(r.windowing.hop) * step);
+  f.attribute("/", "noise_sigma_v", r.noise_sigma_v);
+  f.attribute("/", "band_low_hz", r.band_low_hz);
+  f.attribute("/", "band_high_hz", r.band_high_hz);
+  f.attribute("/", "max_wear_per_ms", context.max_wear_per_ms);
+  f.attribute("/", "max_missed", static_cast<std::int64_t>(context.max_missed));
+  f.attribute("/", "threshold_snr", context.threshold_snr);
+  f.attribute("/", "naive_threshold", context.naive_threshold);
+  f.attribute("/", "seconds", r.seconds);
+
+  std::vector<double> centre, start, floor;
+  for (const TrackWindow& w : r.windows) {
+    centre.push_back(w.centre_s);
+    start.push_back(w.start_s);
+  }
+  for (const WindowLines& w : r.window_lines) floor.push_back(w.floor_v);
+  f.write("/tracking/window_time", centre);
+  f.write("/tracking/window_start", start);
+  f.write("/tracking/window_mean", r.window_mean_v);
+  f.write("/tracking/noise_floor", floor);
+  f.write("/tracking/count", r.count);
+  f.write("/tracking/count_low", r.count_low);
+  f.write("/tracking/count_high", r.count_high);
+  f.write("/tracking/naive_count", r.naive_count);
+  std::vector<std::int64_t> tracks;
+  for (std::size_t t = 0; t < r.tracks.size(); ++t) tracks.push_back(static_cast<std::int64_t>(t));
+  f.write("/tracking/track", tracks);
+  f.write("/tracking/error_inflation", r.error_inflation);
+  const std::size_t nw = r.windows.size();
+  f.write_with_gaps("/tracking/stiffness_n_per_m", r.stiffness, nw);
+  f.write_with_gaps("/tracking/stiffness_low", r.stiffness_low, nw);
+  f.write_with_gaps("/tracking/stiffness_high", r.stiffness_high, nw);
+  f.write_with_gaps("/tracking/frequency_hz", r.frequency, nw);
+  f.write_with_gaps("/tracking/frequency_low", r.frequency_low, nw);
+  f.write_with_gaps("/tracking/frequency_high", r.frequency_high, nw);
+
+  std::vector<std::string> kind;
+  std::vector<double> time, low, high;
+  std::vector<std::int64_t> event_track;
+  for (const TrackEvent& e : r.events) {
+    kind.emplace_back(track_event_name(e.kind));
+    time.push_back(e.time_s);
+    low.push_back(e.time_low_s);
+    high.push_back(e.time_high_s);
+    event_track.push_back(static_cast<std::int64_t>(e.track));
+  }
+  f.write("/tracking/events/kind", kind);
+  f.write("/tracking/events/time_s", time);
+  f.write("/tracking/events/time_low_s", low);
+  f.write("/tracking/events/time_high_s", high);
+  f.write("/tracking/events/track", event_track);
+
+  std::vector<std::int64_t> segment_track, segment_windows;
+  std::vector<double> s_start, s_end, s_k, s_low, s_high, s_f;
+  for (const TrackSegment& s : r.segments) {
+    segment_track.push_back(static_cast<std::int64_t>(s.track));
+    segment_windows.push_back(static_cast<std::int64_t>(s.windows));
+    s_start.push_back(s.start_s);
+    s_end.push_back(s.end_s);
+    s_k.push_back(s.stiffness_n_per_m);
+    s_low.push_back(s.stiffness_low);
+    s_high.push_back(s.stiffness_high);
+    s_f.push_back(s.frequency_hz);
+  }
+  f.write("/tracking/segments/track", segment_track);
+  f.write("/tracking/segments/start_s", s_start);
+  f.write("/tracking/segments/end_s", s_end);
+  f.write("/tracking/segments/windows", segment_windows);
+  f.write("/tracking/segments/stiffness_n_per_m", s_k);
+  f.write("/tracking/segments/stiffness_low", s_low);
+  f.write("/tracking/segments/stiffness_high", s_high);
+  f.write("/tracking/segments/frequency_hz", s_f);
+
+  std::vector<std::int64_t> line_window, detected;
+  std::vector<double> lf, lse, la, lz;
+  for (std::size_t w = 0; w < r.window_lines.size(); ++w)
+    for (const WindowLine& l : r.window_lines[w].lines) {
+      line_window.push_back(static_cast<std::int64_t>(w));
+      detected.push_back(l.detected ? 1 : 0);
+      lf.push_back(l.frequency_hz);
+      lse.push_back(l.frequency_se_hz);
+      la.push_back(l.amplitude_v);
+      lz.push_back(l.snr);
+    }
+  f.write("/tracking/lines/window", line_window);
+  f.write("/tracking/lines/frequency_hz", lf);
+  f.write("/tracking/lines/frequency_se_hz", lse);
+  f.write("/tracking/lines/amplitude_v", la);
+  f.write("/tracking/lines/snr", lz);
+  f.write("/tracking/lines/detected", detected);
+  f.write("/tracking/record/time", context.times_s);
+  f.write("/tracking/record/voltage", context.voltage_v);
+  f.commit();
+}
+
+}  // namespace stengmc
