@@ -46,7 +46,9 @@ void run_single(const RunOptions& options) {
                 static_cast<unsigned long long>(study.realisation),
                 study.surface_file.empty() ? "the inline surface" : study.surface_file.c_str(),
                 static_cast<unsigned long long>(study.seed), study.population.height_m.size(), study.asperities.size());
-  const RunResult result = run_study(study, stengmc::RunOptions{.show_progress = true, .limits = options.limits.limits()});
+  // The file holds samples, not dense motions: each is dropped once summed (a long run fits).
+  const RunResult result = run_study(
+      study, stengmc::RunOptions{.show_progress = true, .limits = options.limits.limits(), .keep_motions = false});
   const RunSummary summary = summarise(study, result);
   write_run_file(out, study, result, summary);
   std::printf("%s", format_summary(study, result, summary).c_str());

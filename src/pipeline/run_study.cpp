@@ -102,7 +102,7 @@ Keep what_to_keep(const Study& study, const RunOptions& options) {
   if (!options.keep_traces) return {.motion = study.netlist != nullptr};
   const OutputTraces& t = study.output.traces;
   const bool current_spectra = study.spectrum && study.spectrum->element_currents;
-  return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
+  return {options.keep_motions || study.netlist != nullptr, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
 }
 
 //! Finds the first time this element's displacement reaches its l; applies the policy.
@@ -180,7 +180,8 @@ void add_measurement_noise(const Study& study, RunResult& result) {
 RunResult run_study(const Study& study, const RunOptions& options) {
   // Before any allocation: one absurd value (a drive at 1e300 Hz) must not start a run that
   // cannot finish or fit. Commands check the same estimate, with their output, earlier.
-  check_work(estimate_run(study, -1.0, false), options.limits, study.file + ": the run");
+  check_work(estimate_run(study, -1.0, false, options.keep_traces && options.keep_motions), options.limits,
+             study.file + ": the run");
   RunResult result;
   const TimeGrid grid = study.grid();
   result.times_s = grid.times();
@@ -252,7 +253,12 @@ RunResult run_study(const Study& study, const RunOptions& options) {
           : std::span<const double>();
       first_exit = std::min(first_exit, domain_exit(study, i, *input, times, *input_samples, own_x, result));
       const bool circuit_needs_motion = sums.add(a.element, *input_samples, *input);
-      if (keep.circuit_samples) circuit_samples[i] = *input_samples;
+      // The element's current and charge read x, x' and its left limits, not the midpoints.
+      if (keep.circuit_samples) {
+        circuit_samples[i].x_m = input_samples->x_m;
+        circuit_samples[i].v_m_per_s = input_samples->v_m_per_s;
+        circuit_samples[i].v_left_m_per_s = input_samples->v_left_m_per_s;
+      }
       if (study.model == ModelKind::model1 && !keep.x) t.x_m = {};
       if (study.model == ModelKind::model1 && !keep.v) t.v_m_per_s = {};
       if (study.model == ModelKind::model1 && !keep.friction) t.friction_n = {};

@@ -54,6 +54,12 @@ struct RunOptions {
   //! is summed into the circuit and dropped: memory per asperity is a few bytes per sample
   //! instead of ~100, and no element-current spectra are computed (nothing records them).
   bool keep_traces = true;
+  //! With keep_traces: also keep every asperity's dense motion (Trajectory::motion) for the
+  //! caller (tests, `export-netlist`). Off (`stengmc run`), a motion is dropped once it is
+  //! sampled and summed, whatever [output] traces asks for: an excited asperity's dense
+  //! output is ~30 MB per ms (a RODAS4 step per node of the modulation's grid), so keeping
+  //! all of them is what stops a long run from fitting (docs/output-files.md, "Long runs").
+  bool keep_motions = true;
 };
 
 //! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`,
