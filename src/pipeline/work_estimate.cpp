@@ -60,7 +60,7 @@ void add_traces(const Study& study, double n, double samples, WorkEstimate& e) {
 }
 
 void add_tribology(const Study& study, double n, double samples, double natural_hz, bool all_motions,
-                   WorkEstimate& e) {
+                   double at_once, WorkEstimate& e) {
   const double duration = study.duration_s;
   if (study.model == ModelKind::model1) {
     const double drive_hz = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI);
@@ -94,13 +94,20 @@ void add_tribology(const Study& study, double n, double samples, double natural_
   e.events = n * (EVENTS_PER_PERIOD * periods + 4.0);
   e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
               n * per_asperity_steps);
-  // Every motion kept, or one asperity's at a time (the fastest one's steps bound each).
+  // Every motion kept, or those of the asperities in turn (the fastest one's steps bound
+  // each), with their samples.
+  const double in_turn = std::min(n, std::max(1.0, at_once));
+  const double bytes_per_step =
+      study.model2.counterface.active() ? MODEL2_BYTES_PER_RESERVED_STEP : MODEL2_BYTES_PER_STEP;
   if (all_motions)
     e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
-                 n * per_asperity_steps * MODEL2_BYTES_PER_STEP);
+                 n * per_asperity_steps * bytes_per_step);
   else
-    e.add_memory("Model 2 dense output of the asperity in turn: ~" + count(per_asperity_steps) + " steps",
-                 (n > 0.0 ? 1.0 : 0.0) * per_asperity_steps * MODEL2_BYTES_PER_STEP);
+    e.add_memory("Model 2 dense output of the " + count(in_turn) + " asperities in turn: ~" + count(per_asperity_steps) +
+                     " steps each",
+                 in_turn * per_asperity_steps * bytes_per_step);
+  if (in_turn > 1.0)
+    e.add_memory("samples of the " + count(in_turn) + " asperities in turn", (in_turn - 1.0) * samples * SAMPLES_BYTES_PER_SAMPLE);
   e.add_memory(std::string("~") + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
 }
 
@@ -171,7 +178,7 @@ void WorkEstimate::add_memory(std::string what, double bytes, std::string remedy
 
 void WorkEstimate::add_steps(std::string what, double count) {
   steps += count;
-  work.push_back({std::move(what), count});
+  work.push_back({std::move(what), count, {}});
 }
 
 double summits_upper_bound(const RandomSurface& surface) {
@@ -209,7 +216,8 @@ ChildBudget ngspice_budget(const Study& study, const WorkLimits& limits) {
   return budget;
 }
 
-WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file, bool keeps_motions) {
+WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file, bool keeps_motions,
+                          std::size_t threads) {
   WorkEstimate e;
   const bool known = asperities < 0.0;
   const double n = known ? static_cast<double>(study.asperities.size()) : asperities;
@@ -222,7 +230,8 @@ WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run
       study.model == ModelKind::model1 ? MODEL1_BYTES_PER_ASPERITY_SAMPLE : RUN_BYTES_PER_ASPERITY_SAMPLE;
   e.add_memory(count(n) + " asperities x " + count(samples) + " samples", n * samples * per_asperity_sample);
   if (writes_run_file) add_traces(study, n, samples, e);
-  add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), keeps_motions || study.netlist != nullptr, e);
+  add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), keeps_motions || study.netlist != nullptr,
+                static_cast<double>(threads), e);
   if (study.netlist) {
     add_ngspice(*study.netlist, n, samples, e);
   } else {
@@ -234,6 +243,12 @@ WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run
   if (study.spectrum) add_spectra(samples, n, *study.spectrum, e);
   if (const RandomSurface* surface = study.surface->random_surface()) add_sampling(*surface, 1.0, e);
   return e;
+}
+
+std::size_t run_threads_within(const Study& study, std::size_t wanted, const WorkLimits& limits) {
+  std::size_t threads = std::clamp<std::size_t>(wanted, 1, std::max<std::size_t>(study.asperities.size(), 1));
+  while (threads > 1 && !(estimate_run(study, -1.0, true, false, threads).memory_bytes <= limits.memory_bytes)) --threads;
+  return threads;
 }
 
 WorkEstimate estimate_circuit(double samples, double elements, std::size_t substeps) {
