@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "circuit/element_sums.hpp"
@@ -150,9 +151,15 @@ void solve_block(const Study& study, std::size_t first, std::span<MotionSamples>
       errors[s] = std::current_exception();
     }
   };
+  // A thread the system will not start leaves its asperities to this one.
   std::vector<std::thread> helpers;
-  for (std::size_t s = 1; s < slots.size(); ++s) helpers.emplace_back(solve, s);
+  std::size_t started = 1;
+  try {
+    for (; started < slots.size(); ++started) helpers.emplace_back(solve, started);
+  } catch (const std::system_error&) {
+  }
   solve(0);
+  for (std::size_t s = started; s < slots.size(); ++s) solve(s);
   for (std::thread& helper : helpers) helper.join();
 }
 
@@ -257,7 +264,8 @@ RunResult run_study(const Study& study, const RunOptions& options) {
   // Model 2's asperities are solved `threads` at a time, each into a slot, then taken in
   // their order: the circuit's sums see them in the same order whatever the count, so the
   // run is the same bit for bit. Model 1 (cheap) takes them one by one.
-  const std::size_t width = study.model == ModelKind::model2 ? std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(n, 1)) : 1;
+  const std::size_t width =
+      study.model == ModelKind::model2 ? std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(n, 1)) : 1;
   std::vector<MotionSamples> slots(width);
   std::vector<std::exception_ptr> errors(width);
   double first_exit = INFINITY;
