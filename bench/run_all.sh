@@ -11,7 +11,8 @@
 # nothing in the repository changes) and built in build/baseline (stengmc only). Output:
 # the targets table (bench_targets), the scipy comparison (compare_scipy.py), the chain's
 # accuracy against its independent reference (test_chain_reference), and the component
-# benchmarks (bench_model2, bench_spectral, bench_pipeline, bench_ensemble).
+# benchmarks (bench_model2, bench_spectral, bench_pipeline, bench_ensemble), and the long
+# records' memory and time (bench_long_run; its base-revision ratio needs --baseline by hand).
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -26,7 +27,7 @@ JOBS=${JOBS:-2}
 echo "== building the current tree (Release)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j"$JOBS" --target stengmc bench_targets bench_asperity_run bench_model2 bench_spectral \
-  bench_pipeline bench_ensemble test_chain_reference > /dev/null
+  bench_pipeline bench_ensemble bench_long_run test_chain_reference > /dev/null
 
 echo "== building the base revision $BASELINE (once; stengmc only)"
 rev=$(git rev-parse "$BASELINE")
@@ -58,3 +59,7 @@ echo "== 4. component benchmarks"
 ./build/bench/bench_spectral
 ./build/bench/bench_pipeline
 ./build/bench/bench_ensemble $QUICK
+
+echo
+echo "== 5. long records (issue 26): 1 and 10 ms of 50 excited asperities, peak memory and time"
+./build/bench/bench_long_run $QUICK

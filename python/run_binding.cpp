@@ -111,7 +111,9 @@ py::dict run(const StudyFile& base, std::uint64_t realisation, bool progress) {
     // The computation holds no Python object: other Python threads run meanwhile.
     py::gil_scoped_release release;
     Study study = study_for_realisation(base, realisation);
-    RunResult result = run_study(study, RunOptions{.show_progress = progress, .limits = WorkLimits{}});
+    // Arrays, not dense motions, come back: each motion goes once summed (a long run fits).
+    RunResult result =
+        run_study(study, RunOptions{.show_progress = progress, .limits = WorkLimits{}, .keep_motions = false});
     RunSummary s = summarise(study, result);
     c = std::make_unique<Computed>(Computed{std::move(study), std::move(result), std::move(s)});
   }

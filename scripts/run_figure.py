@@ -126,8 +126,10 @@ def run_figure(f, path):
             ax.text(0.6, 0.5, f"circuit cut at t = {tc[-1]:.3g} {t_unit}: x reached l", transform=ax.transAxes,
                     ha="center", va="center", fontsize=9, color="red")
         mark_domain_exits(ax, f, t_factor)
-    # One legend, beside the top panel: the same colours hold in every panel.
-    axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    # One legend, beside the top panel: the same colours hold in every panel. A run without
+    # per-asperity traces (`[output] traces = []`, a long record) has nothing to label.
+    if axes[0].get_legend_handles_labels()[0]:
+        axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     axes[-1].set_xlabel(f"t [{t_unit}]")
     fig.suptitle(title(f, path), fontsize=9)
     return fig

@@ -33,7 +33,7 @@ void run(const ExportOptions& options) {
   // netlist load is not co-simulated.
   Study tribology_only = study;
   tribology_only.netlist = nullptr;
-  check_work(estimate_run(tribology_only), options.limits.limits(), study.file + ": the run");
+  check_work(estimate_run(tribology_only, -1.0, true, true), options.limits.limits(), study.file + ": the run");
   std::printf("stengmc export-netlist %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
               std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
               study.sample_rate_hz);

@@ -1,3 +1,5 @@
+#include <omp.h>
+
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -36,7 +38,12 @@ void run_single(const RunOptions& options) {
   const StudyFile study = read_study_file(options.study_file, options.realisation);
   const std::string out = options.out.empty() ? study.output.file : options.out;
   check_output_path(out, study_inputs(study), output_option(options.out, study));
-  check_work(estimate_run(study), options.limits.limits(), study.file + ": the run");
+  // Model 2 asperities side by side: -j threads, or as many as the cores and the memory
+  // limit allow (each holds one asperity's dense output); the run is the same bit for bit.
+  const std::size_t threads = options.ensemble.threads > 0
+      ? static_cast<std::size_t>(options.ensemble.threads)
+      : run_threads_within(study, static_cast<std::size_t>(omp_get_max_threads()), options.limits.limits());
+  check_work(estimate_run(study, -1.0, true, false, threads), options.limits.limits(), study.file + ": the run");
   std::printf("stengmc run %s: %s, %zu asperities, %.4g s at %.4g Hz\n", study.file.c_str(),
               std::string(model_name(study.model)).c_str(), study.asperities.size(), study.duration_s,
               study.sample_rate_hz);
@@ -46,7 +53,11 @@ void run_single(const RunOptions& options) {
                 static_cast<unsigned long long>(study.realisation),
                 study.surface_file.empty() ? "the inline surface" : study.surface_file.c_str(),
                 static_cast<unsigned long long>(study.seed), study.population.height_m.size(), study.asperities.size());
-  const RunResult result = run_study(study, stengmc::RunOptions{.show_progress = true, .limits = options.limits.limits()});
+  // The file holds samples, not dense motions: each is dropped once summed (a long run fits).
+  const RunResult result = run_study(study, stengmc::RunOptions{.show_progress = true,
+                                                                 .limits = options.limits.limits(),
+                                                                 .keep_motions = false,
+                                                                 .threads = threads});
   const RunSummary summary = summarise(study, result);
   write_run_file(out, study, result, summary);
   std::printf("%s", format_summary(study, result, summary).c_str());
@@ -108,7 +119,8 @@ void add_run_command(CLI::App& app) {
   CLI::Option* figures = command->add_flag("-f,--figures", options->figures,
                                            "Also render figures beside the output (needs python3-h5py, matplotlib)");
   add_figure_options(command, figures, options->figure);
-  command->add_option("-j,--threads", options->ensemble.threads, "Ensemble: threads (default 0: OMP_NUM_THREADS when set, else every core)")
+  command->add_option("-j,--threads", options->ensemble.threads, "Threads: an ensemble's realisations, or a single Model 2 run's asperities, the run the same for any count "
+                      "(default 0: OMP_NUM_THREADS when set, else every core; a single run: as many as fit --max-memory-gb)")
       ->capture_default_str()
       ->check(CLI::Range(0, MAX_THREADS));
   command->add_option("--only", options->ensemble.only,

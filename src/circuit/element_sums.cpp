@@ -75,6 +75,7 @@ void ElementSums::reset(std::span<const double> times_s) {
   exceptions_.clear();
   element_kinks_.clear();
   fine_tables_.clear();
+  excerpts_.clear();
 }
 
 bool ElementSums::add(const StengElement& element, const MotionSamples& samples, const Motion& motion) {
@@ -115,6 +116,7 @@ bool ElementSums::add(const StengElement& element, const MotionSamples& samples,
   mark(kinks, 1);
   mark(fine, 2);
   const std::size_t kinks_index = element_kinks_.size();
+  const std::size_t first = exceptions_.size();  // this element's exceptions start here
   bool has_kink = false;
   for (std::size_t j = 0; j + 1 < m; ++j) {
     if (flags[j] != 0) {
@@ -141,8 +143,22 @@ bool ElementSums::add(const StengElement& element, const MotionSamples& samples,
     dp_mid_[j] += cw * samples.mid_v_m_per_s[j];
     dk_mid_[j] += g * samples.mid_v_m_per_s[j];
   }
-  if (has_kink) element_kinks_.push_back(kinks);
-  return has_kink;
+  if (!has_kink) return false;
+  element_kinks_.push_back(kinks);
+  // The intervals with a kink are this element's exceptions that carry the motion: its
+  // excerpt over them replaces it, so the motion itself may go.
+  std::size_t lo = m, hi = 0;
+  for (std::size_t e = first; e < exceptions_.size(); ++e)
+    if (exceptions_[e].motion != nullptr) {
+      lo = std::min(lo, exceptions_[e].interval);
+      hi = std::max(hi, exceptions_[e].interval + 1);
+    }
+  std::shared_ptr<const Motion> part = motion.excerpt(times_[lo], times_[hi]);
+  if (!part) return true;
+  for (std::size_t e = first; e < exceptions_.size(); ++e)
+    if (exceptions_[e].motion != nullptr) exceptions_[e].motion = part.get();
+  excerpts_.push_back(std::move(part));
+  return false;
 }
 
 //! The solve, with the tables it shares between intervals.

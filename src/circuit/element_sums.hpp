@@ -22,6 +22,7 @@
 //! Wanner, Solving ODEs II, Sec. IV.5), `substeps` steps per output interval, as the
 //! motion-node solver (circuit_solver.hpp), which evaluates every motion at every node.
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -52,10 +53,11 @@ class ElementSums {
   //! Adds one element driven by `motion`, whose samples on the grid (with midpoints) are
   //! `samples`. Where its motion has a breakpoint strictly inside an interval, it is
   //! evaluated exactly there and the interval's steps split at every such element's
-  //! breakpoints (`motion` must then outlive the solve); where it has fine structure
-  //! (Motion::fine_structure), it is recorded densely over the interval now, and the
-  //! interval takes FINE_STRUCTURE_REFINEMENT times as many steps.
-  //! @return whether `motion` must outlive the solve (it has a breakpoint inside an interval)
+  //! breakpoints: the sums keep the motion's excerpt over those intervals (Motion::excerpt,
+  //! bit for bit the same there), or, for a motion without one, `motion` must outlive the
+  //! solve; where it has fine structure (Motion::fine_structure), it is recorded densely
+  //! over the interval now, and the interval takes FINE_STRUCTURE_REFINEMENT times as many steps.
+  //! @return whether `motion` must outlive the solve (a breakpoint inside an interval and no excerpt)
   bool add(const StengElement& element, const MotionSamples& samples, const Motion& motion);
 
   [[nodiscard]] std::span<const double> times() const { return times_; }
@@ -92,6 +94,9 @@ class ElementSums {
   std::vector<Exception> exceptions_;  // in the order added
   std::vector<std::vector<double>> element_kinks_;  // breakpoints of the elements with exceptions
   std::vector<double> fine_tables_;  // (x, x') pairs of the fine-structure tables
+  // Excerpts of the motions with kinks (Motion::excerpt), which their exceptions evaluate;
+  // shared so that the sums stay copyable.
+  std::vector<std::shared_ptr<const Motion>> excerpts_;
 };
 
 //! The solution on the grid's first `samples` times.

@@ -27,6 +27,13 @@ double DelayedMotion::displacement_bound() const {
   return std::max(from_onset_->displacement_bound(), rest_displacement_m_);
 }
 
+std::unique_ptr<Motion> DelayedMotion::excerpt(double t0_s, double t1_s) const {
+  // at() evaluates the inner motion at t - onset only for t >= onset: the same differences here.
+  std::unique_ptr<Motion> inner = from_onset_->excerpt(std::max(0.0, t0_s - onset_s_), std::max(0.0, t1_s - onset_s_));
+  if (!inner) return nullptr;
+  return std::make_unique<DelayedMotion>(std::move(inner), onset_s_, rest_displacement_m_);
+}
+
 void DelayedMotion::sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const {
   const std::size_t count = times_s.size();
   const auto first_after = static_cast<std::size_t>(std::lower_bound(times_s.begin(), times_s.end(), onset_s_) - times_s.begin());

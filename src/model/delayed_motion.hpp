@@ -20,6 +20,9 @@ class DelayedMotion final : public Motion {
   [[nodiscard]] const std::vector<double>& breakpoints() const override { return breakpoints_; }
   [[nodiscard]] std::vector<double> fine_structure(double resolution_s) const override;
   [[nodiscard]] double displacement_bound() const override;
+  //! The rest state and the inner motion's excerpt over the same times from the onset;
+  //! nullptr when the inner motion has none.
+  [[nodiscard]] std::unique_ptr<Motion> excerpt(double t0_s, double t1_s) const override;
   //! Before the onset the rest state; from it on, the inner motion's own sampling on the
   //! shifted times (a uniform grid stays uniform).
   void sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const override;

@@ -7,6 +7,8 @@ namespace stengmc {
 
 double Motion::displacement_bound() const { return INFINITY; }
 
+std::unique_ptr<Motion> Motion::excerpt(double /*t0_s*/, double /*t1_s*/) const { return nullptr; }
+
 void Motion::sample(std::span<const double> times_s, bool midpoints, MotionSamples& out) const {
   const std::size_t count = times_s.size();
   out.x_m.resize(count);

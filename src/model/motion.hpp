@@ -1,4 +1,5 @@
 #pragma once
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -55,6 +56,13 @@ class Motion {
   //! An upper bound on x over the whole motion [m], +inf when unknown (the default). Where
   //! it is below an element's l, x cannot reach l and the domain check has nothing to do.
   [[nodiscard]] virtual double displacement_bound() const;
+
+  //! A motion equal to this one, bit for bit, at every time in [t0_s, t1_s] (either side),
+  //! holding only what it needs there; nullptr (the default) when the motion has no smaller
+  //! form. The streamed circuit keeps one for the few sample intervals where it evaluates a
+  //! motion exactly (a kink inside: circuit/element_sums.hpp), so that a long run need not
+  //! keep every asperity's whole dense output until the circuit is solved.
+  [[nodiscard]] virtual std::unique_ptr<Motion> excerpt(double t0_s, double t1_s) const;
 
   //! The motion at `times_s` (strictly increasing) and, when `midpoints`, at the midpoints
   //! between them, into `out` (resized). The default evaluates at() at each; a motion

@@ -4,7 +4,10 @@
 #include <optional>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <sstream>
+#include <system_error>
+#include <thread>
 
 #include "circuit/element_sums.hpp"
 #include "circuit/netlist_circuit.hpp"
@@ -102,7 +105,62 @@ Keep what_to_keep(const Study& study, const RunOptions& options) {
   if (!options.keep_traces) return {.motion = study.netlist != nullptr};
   const OutputTraces& t = study.output.traces;
   const bool current_spectra = study.spectrum && study.spectrum->element_currents;
-  return {true, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
+  return {options.keep_motions || study.netlist != nullptr, t.x, t.v, t.friction, t.current || t.charge || current_spectra};
+}
+
+//! Asperity i's tribology: its trajectory (the motion, Model 2's events and step counts, the
+//! traces `keep` asks for), its samples on the grid (with midpoints) and its statistics.
+//! Touches nothing shared: asperities are solved side by side (RunOptions::threads).
+void solve_asperity(const Study& study, std::size_t i, const TimeGrid& grid, std::span<const double> times, double t_end,
+                    const Keep& keep, const SlidingRule& rule, Trajectory& t, MotionSamples& samples,
+                    AsperityStatistics& statistics) {
+  const Asperity& a = study.asperities[i];
+  if (study.model == ModelKind::model1) {
+    t = solve_model1(a, study.model1, grid);
+    check_finite(t.x_m, t.v_m_per_s, t.friction_n, a, i, grid);
+    t.motion->sample(times, true, samples);
+    statistics = statistics_of(rule, t.x_m, t.v_m_per_s, !t.events.empty());
+    return;
+  }
+  // The counterface's modulation of asperity i: its own stream (seed, realisation, i).
+  const CounterfaceStream stream{study.seed, study.realisation, i};
+  Model2Solution solution = solve_model2_motion(a, study.model2, t_end, stream);
+  t.solver_steps = solution.accepted_steps;
+  t.rejected_steps = solution.rejected_steps;
+  solution.motion->sample(times, true, samples);
+  t.events = std::move(solution.events);
+  t.motion = std::move(solution.motion);
+  if (keep.friction) model2_friction_trace(a, study.model2, times, samples.v_m_per_s, t.friction_n, stream);
+  check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
+  statistics = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
+  if (keep.x) t.x_m = samples.x_m;
+  if (keep.v) t.v_m_per_s = samples.v_m_per_s;
+}
+
+//! Solves asperities first, first + 1, ... (one per slot) side by side, one thread each; an
+//! asperity's error is kept in its slot, to be raised in the asperities' order.
+void solve_block(const Study& study, std::size_t first, std::span<MotionSamples> slots,
+                 std::span<std::exception_ptr> errors, const TimeGrid& grid, std::span<const double> times, double t_end,
+                 const Keep& keep, const SlidingRule& rule, RunResult& result) {
+  auto solve = [&](std::size_t s) {
+    errors[s] = nullptr;
+    try {
+      solve_asperity(study, first + s, grid, times, t_end, keep, rule, result.trajectories[first + s], slots[s],
+                     result.statistics[first + s]);
+    } catch (...) {
+      errors[s] = std::current_exception();
+    }
+  };
+  // A thread the system will not start leaves its asperities to this one.
+  std::vector<std::thread> helpers;
+  std::size_t started = 1;
+  try {
+    for (; started < slots.size(); ++started) helpers.emplace_back(solve, started);
+  } catch (const std::system_error&) {
+  }
+  solve(0);
+  for (std::size_t s = started; s < slots.size(); ++s) solve(s);
+  for (std::thread& helper : helpers) helper.join();
 }
 
 //! Finds the first time this element's displacement reaches its l; applies the policy.
@@ -180,7 +238,8 @@ void add_measurement_noise(const Study& study, RunResult& result) {
 RunResult run_study(const Study& study, const RunOptions& options) {
   // Before any allocation: one absurd value (a drive at 1e300 Hz) must not start a run that
   // cannot finish or fit. Commands check the same estimate, with their output, earlier.
-  check_work(estimate_run(study, -1.0, false), options.limits, study.file + ": the run");
+  check_work(estimate_run(study, -1.0, false, options.keep_traces && options.keep_motions, options.threads),
+             options.limits, study.file + ": the run");
   RunResult result;
   const TimeGrid grid = study.grid();
   result.times_s = grid.times();
@@ -201,7 +260,14 @@ RunResult run_study(const Study& study, const RunOptions& options) {
   const double t_end = grid.count > 0 ? grid.at(grid.count - 1) : 0.0;
   ElementSums sums(times);
   std::vector<MotionSamples> circuit_samples(keep.circuit_samples ? n : 0);
-  MotionSamples samples, drive_samples;
+  MotionSamples drive_samples;
+  // Model 2's asperities are solved `threads` at a time, each into a slot, then taken in
+  // their order: the circuit's sums see them in the same order whatever the count, so the
+  // run is the same bit for bit. Model 1 (cheap) takes them one by one.
+  const std::size_t width =
+      study.model == ModelKind::model2 ? std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(n, 1)) : 1;
+  std::vector<MotionSamples> slots(width);
+  std::vector<std::exception_ptr> errors(width);
   double first_exit = INFINITY;
   result.trajectories.resize(n);
   result.statistics.resize(n);
@@ -210,28 +276,17 @@ RunResult run_study(const Study& study, const RunOptions& options) {
     std::optional<Progress> progress;
     if (options.show_progress) progress.emplace("tribology", n);
     for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t slot = i % width;
+      if (slot == 0) {
+        const std::size_t count = std::min(width, n - i);
+        solve_block(study, i, std::span<MotionSamples>(slots).first(count),
+                    std::span<std::exception_ptr>(errors).first(count), grid, times, t_end, keep, rule, result);
+      }
+      // An error is raised where the asperities' order meets it, as if they ran one by one.
+      if (errors[slot]) std::rethrow_exception(errors[slot]);
       const Asperity& a = study.asperities[i];
       Trajectory& t = result.trajectories[i];
-      if (study.model == ModelKind::model1) {
-        t = solve_model1(a, study.model1, grid);
-        check_finite(t.x_m, t.v_m_per_s, t.friction_n, a, i, grid);
-        t.motion->sample(times, true, samples);
-        result.statistics[i] = statistics_of(rule, t.x_m, t.v_m_per_s, !t.events.empty());
-      } else {
-        // The counterface's modulation of asperity i: its own stream (seed, realisation, i).
-        const CounterfaceStream stream{study.seed, study.realisation, i};
-        Model2Solution solution = solve_model2_motion(a, study.model2, t_end, stream);
-        t.solver_steps = solution.accepted_steps;
-        t.rejected_steps = solution.rejected_steps;
-        solution.motion->sample(times, true, samples);
-        t.events = std::move(solution.events);
-        t.motion = std::move(solution.motion);
-        if (keep.friction) model2_friction_trace(a, study.model2, times, samples.v_m_per_s, t.friction_n, stream);
-        check_finite(samples.x_m, samples.v_m_per_s, t.friction_n, a, i, grid);
-        result.statistics[i] = statistics_of(rule, samples.x_m, samples.v_m_per_s, !t.events.empty());
-        if (keep.x) t.x_m = samples.x_m;
-        if (keep.v) t.v_m_per_s = samples.v_m_per_s;
-      }
+      const MotionSamples& samples = slots[slot];
       for (Event e : t.events) {
         e.asperity = i;
         result.events.push_back(e);
@@ -252,7 +307,12 @@ RunResult run_study(const Study& study, const RunOptions& options) {
           : std::span<const double>();
       first_exit = std::min(first_exit, domain_exit(study, i, *input, times, *input_samples, own_x, result));
       const bool circuit_needs_motion = sums.add(a.element, *input_samples, *input);
-      if (keep.circuit_samples) circuit_samples[i] = *input_samples;
+      // The element's current and charge read x, x' and its left limits, not the midpoints.
+      if (keep.circuit_samples) {
+        circuit_samples[i].x_m = input_samples->x_m;
+        circuit_samples[i].v_m_per_s = input_samples->v_m_per_s;
+        circuit_samples[i].v_left_m_per_s = input_samples->v_left_m_per_s;
+      }
       if (study.model == ModelKind::model1 && !keep.x) t.x_m = {};
       if (study.model == ModelKind::model1 && !keep.v) t.v_m_per_s = {};
       if (study.model == ModelKind::model1 && !keep.friction) t.friction_n = {};

@@ -54,6 +54,17 @@ struct RunOptions {
   //! is summed into the circuit and dropped: memory per asperity is a few bytes per sample
   //! instead of ~100, and no element-current spectra are computed (nothing records them).
   bool keep_traces = true;
+  //! With keep_traces: also keep every asperity's dense motion (Trajectory::motion) for the
+  //! caller (tests, `export-netlist`). Off (`stengmc run`), a motion is dropped once it is
+  //! sampled and summed, whatever [output] traces asks for: an excited asperity's dense
+  //! output is ~30 MB per ms (a RODAS4 step per node of the modulation's grid), so keeping
+  //! all of them is what stops a long run from fitting (docs/output-files.md, "Long runs").
+  bool keep_motions = true;
+  //! Model 2 asperities solved side by side, one thread each (Model 1: one at a time). The
+  //! circuit takes them in their order, so any count gives the same run bit for bit; each
+  //! holds its dense output until its turn, so memory grows by one asperity's per thread.
+  //! An ensemble runs its realisations in parallel instead: leave it at 1 there.
+  std::size_t threads = 1;
 };
 
 //! Runs the study's realisation. Throws ModelError when x reaches l under policy `error`,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "circuit/netlist_circuit.hpp"
 #include "core/constants.hpp"
@@ -32,13 +33,34 @@ double fastest_natural_frequency_hz(const Study& study, bool asperities_known) {
   return highest;
 }
 
-double traces_written(const Study& study) {
+//! The study's `[output] traces` as written in it: ["x", "v", ...] (x0 for Model 1 only).
+std::vector<std::string> traces_kept(const Study& study) {
   const OutputTraces& t = study.output.traces;
-  return (t.x ? 1 : 0) + (t.v ? 1 : 0) + (t.friction ? 1 : 0) + (t.current ? 1 : 0) + (t.charge ? 1 : 0) +
-         (t.x0 && study.model == ModelKind::model1 ? 1 : 0);
+  std::vector<std::string> names;
+  for (const auto& [kept, name] : {std::pair{t.x, "x"}, {t.v, "v"}, {t.friction, "friction"}, {t.current, "current"},
+                                   {t.charge, "charge"}, {t.x0 && study.model == ModelKind::model1, "x0"}})
+    if (kept) names.emplace_back(name);
+  return names;
 }
 
-void add_tribology(const Study& study, double n, double samples, double natural_hz, WorkEstimate& e) {
+//! The traces a `run` keeps and writes: each n x M in memory and in the file being written,
+//! and the circuit input the element currents and charges are computed from.
+void add_traces(const Study& study, double n, double samples, WorkEstimate& e) {
+  const std::vector<std::string> names = traces_kept(study);
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "\"" : ", \"") + name + "\"";
+  const auto traces = static_cast<double>(names.size());
+  const OutputTraces& t = study.output.traces;
+  const double current_input = t.current || t.charge ? CURRENT_INPUT_BYTES_PER_SAMPLE : 0.0;
+  e.add_memory("[output] traces = [" + list + "]: " + count(traces) + " traces of " + count(n) + " asperities x " +
+                   count(samples) + " samples, kept and written",
+               n * samples * (traces * (TRACE_BYTES_PER_SAMPLE + FILE_BYTES_PER_VALUE) + current_input),
+               "list fewer in [output] traces (traces = [] keeps V and Q only) or shorten duration_s");
+  e.add_memory("run file: V, Q and times of " + count(samples) + " samples", 3.0 * samples * FILE_BYTES_PER_VALUE);
+}
+
+void add_tribology(const Study& study, double n, double samples, double natural_hz, bool all_motions,
+                   double at_once, WorkEstimate& e) {
   const double duration = study.duration_s;
   if (study.model == ModelKind::model1) {
     const double drive_hz = study.model1.drive_angular_frequency_rad_per_s / (2.0 * PI);
@@ -72,8 +94,20 @@ void add_tribology(const Study& study, double n, double samples, double natural_
   e.events = n * (EVENTS_PER_PERIOD * periods + 4.0);
   e.add_steps("Model 2 (RODAS4): " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
               n * per_asperity_steps);
-  e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
-               n * per_asperity_steps * MODEL2_BYTES_PER_STEP);
+  // Every motion kept, or those of the asperities in turn (the fastest one's steps bound
+  // each), with their samples.
+  const double in_turn = std::min(n, std::max(1.0, at_once));
+  const double bytes_per_step =
+      study.model2.counterface.active() ? MODEL2_BYTES_PER_RESERVED_STEP : MODEL2_BYTES_PER_STEP;
+  if (all_motions)
+    e.add_memory("Model 2 dense output: " + count(n) + " asperities x ~" + count(per_asperity_steps) + " steps",
+                 n * per_asperity_steps * bytes_per_step);
+  else
+    e.add_memory("Model 2 dense output of the " + count(in_turn) + " asperities in turn: ~" + count(per_asperity_steps) +
+                     " steps each",
+                 in_turn * per_asperity_steps * bytes_per_step);
+  if (in_turn > 1.0)
+    e.add_memory("samples of the " + count(in_turn) + " asperities in turn", (in_turn - 1.0) * samples * SAMPLES_BYTES_PER_SAMPLE);
   e.add_memory(std::string("~") + count(e.events) + " stick/slip events", e.events * BYTES_PER_EVENT);
 }
 
@@ -137,14 +171,14 @@ const WorkPart* largest(const std::vector<WorkPart>& parts) {
 
 }  // namespace
 
-void WorkEstimate::add_memory(std::string what, double bytes) {
+void WorkEstimate::add_memory(std::string what, double bytes, std::string remedy) {
   memory_bytes += bytes;
-  memory.push_back({std::move(what), bytes});
+  memory.push_back({std::move(what), bytes, std::move(remedy)});
 }
 
 void WorkEstimate::add_steps(std::string what, double count) {
   steps += count;
-  work.push_back({std::move(what), count});
+  work.push_back({std::move(what), count, {}});
 }
 
 double summits_upper_bound(const RandomSurface& surface) {
@@ -182,7 +216,8 @@ ChildBudget ngspice_budget(const Study& study, const WorkLimits& limits) {
   return budget;
 }
 
-WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file) {
+WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run_file, bool keeps_motions,
+                          std::size_t threads) {
   WorkEstimate e;
   const bool known = asperities < 0.0;
   const double n = known ? static_cast<double>(study.asperities.size()) : asperities;
@@ -191,12 +226,12 @@ WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run
   e.asperities = n;
   e.add_memory("program", BASE_BYTES);
   e.add_memory(count(samples) + " samples", samples * RUN_BYTES_PER_SAMPLE);
-  e.add_memory(count(n) + " asperities x " + count(samples) + " samples", n * samples * RUN_BYTES_PER_ASPERITY_SAMPLE);
-  if (writes_run_file)
-    e.add_memory("run file: " + count(traces_written(study)) + " traces of " + count(n) + " asperities x " + count(samples) +
-                     " samples",
-                 (traces_written(study) * n + 3.0) * samples * FILE_BYTES_PER_VALUE);
-  add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), e);
+  const double per_asperity_sample =
+      study.model == ModelKind::model1 ? MODEL1_BYTES_PER_ASPERITY_SAMPLE : RUN_BYTES_PER_ASPERITY_SAMPLE;
+  e.add_memory(count(n) + " asperities x " + count(samples) + " samples", n * samples * per_asperity_sample);
+  if (writes_run_file) add_traces(study, n, samples, e);
+  add_tribology(study, n, samples, fastest_natural_frequency_hz(study, known), keeps_motions || study.netlist != nullptr,
+                static_cast<double>(threads), e);
   if (study.netlist) {
     add_ngspice(*study.netlist, n, samples, e);
   } else {
@@ -208,6 +243,12 @@ WorkEstimate estimate_run(const Study& study, double asperities, bool writes_run
   if (study.spectrum) add_spectra(samples, n, *study.spectrum, e);
   if (const RandomSurface* surface = study.surface->random_surface()) add_sampling(*surface, 1.0, e);
   return e;
+}
+
+std::size_t run_threads_within(const Study& study, std::size_t wanted, const WorkLimits& limits) {
+  std::size_t threads = std::clamp<std::size_t>(wanted, 1, std::max<std::size_t>(study.asperities.size(), 1));
+  while (threads > 1 && !(estimate_run(study, -1.0, true, false, threads).memory_bytes <= limits.memory_bytes)) --threads;
+  return threads;
 }
 
 WorkEstimate estimate_circuit(double samples, double elements, std::size_t substeps) {
@@ -250,7 +291,9 @@ std::string exceeded_limit(const WorkEstimate& e, const WorkLimits& limits, cons
                         const std::string& option) {
     std::string text = "needs ~" + describe(amount, bytes) + (bytes ? " of memory" : "") + ", " +
                        format_number(amount / limit) + " x the limit of " + describe(limit, bytes);
-    if (const WorkPart* part = largest(parts)) text += "; most of it: " + part->what + " (~" + describe(part->amount, bytes) + ")";
+    const WorkPart* part = largest(parts);
+    if (part) text += "; most of it: " + part->what + " (~" + describe(part->amount, bytes) + ")";
+    if (part && !part->remedy.empty()) return text + ". Reduce it: " + part->remedy + "; or raise the limit with " + option;
     return text + ". Reduce it, or raise the limit with " + option;
   };
   // !(a <= b) also catches NaN and inf from absurd inputs.

@@ -22,20 +22,37 @@ namespace stengmc {
 
 // ---------------------------------------------------------------- per-item costs
 
-//! Memory of one run per asperity and output sample [bytes]: x, x', friction, the circuit
-//! input's copy, Model 1's x0, element currents and charges, a flattening copy when written.
-inline constexpr double RUN_BYTES_PER_ASPERITY_SAMPLE = 64;
-//! Memory per output sample shared by all asperities [bytes]: times, V, Q, measured V, ...
-inline constexpr double RUN_BYTES_PER_SAMPLE = 64;
+//! Memory of one kept trace (an `[output] traces` entry) per asperity and output sample
+//! [bytes]: the array a run keeps until it writes the file.
+inline constexpr double TRACE_BYTES_PER_SAMPLE = 8;
+//! Memory per asperity and output sample of the circuit input a run keeps for the element
+//! currents and charges (x, x' and its left limits) when any of them is kept [bytes].
+inline constexpr double CURRENT_INPUT_BYTES_PER_SAMPLE = 24;
+//! Memory per asperity and output sample whatever is kept [bytes]: its per-sample sliding
+//! flags (a bit each, for the spectra) and, for Model 1, the solver's own x, x' and friction
+//! while the asperity is in turn, with growth slack.
+inline constexpr double RUN_BYTES_PER_ASPERITY_SAMPLE = 1;
+inline constexpr double MODEL1_BYTES_PER_ASPERITY_SAMPLE = 64;
+//! Memory per output sample shared by all asperities [bytes]: times, V, Q, V' and the
+//! measured V; the circuit's sums (ten per sample, circuit/element_sums.hpp) and the grid
+//! they copy; the samples of the asperity in turn (x, x', its left limits, midpoints).
+inline constexpr double RUN_BYTES_PER_SAMPLE = 192;
+//! Memory per output sample of one asperity's samples (x, x', left limits, midpoints) [bytes]:
+//! each further asperity solved at once (RunOptions::threads) holds its own.
+inline constexpr double SAMPLES_BYTES_PER_SAMPLE = 48;
 //! Memory of an output file per value written [bytes]: the file is built in memory and
 //! copied once while it is written out (core/hdf5_file.hpp).
 inline constexpr double FILE_BYTES_PER_VALUE = 16;
 //! Memory per stick/slip event [bytes]: Model 1's phase (its closed-form coefficients),
 //! the event in the trajectory and in the run's sorted list, its row in the file.
 inline constexpr double BYTES_PER_EVENT = 256;
-//! Memory per Model 2 integrator step [bytes]: a dense-output knot (t, x, x', x'') kept for
-//! the circuit, with the vector's growth slack.
-inline constexpr double MODEL2_BYTES_PER_STEP = 64;
+//! Memory per Model 2 integrator step [bytes]: a dense-output knot (t, x, x', x'': 32) and
+//! its piece (80), with the vectors' growth slack (measured: 36 MB per excited asperity and
+//! ms at ~3e5 steps per ms, 120 bytes a step).
+inline constexpr double MODEL2_BYTES_PER_STEP = 192;
+//! The same for a modulated friction ([counterface]), whose integrator reserves its steps
+//! once (a step per node of the modulation's grid: tribology/evolving_contact.cpp) [bytes].
+inline constexpr double MODEL2_BYTES_PER_RESERVED_STEP = 128;
 //! Model 2 (RODAS4) steps per natural period at relative_tolerance 1e-8: 32 (v_b = 1 m/s)
 //! to 94 (v_b = 10 m/s) measured on the Fig. 6 studies; steps grow as tol^(-1/4) (order 4).
 inline constexpr double MODEL2_STEPS_PER_PERIOD = 100;
@@ -89,6 +106,7 @@ struct WorkLimits {
 struct WorkPart {
   std::string what;     //!< "4 asperities x 1e+06 samples"
   double amount = 0.0;  //!< bytes or steps
+  std::string remedy;   //!< what lowers it, when the study says ("list fewer [output] traces"); may be empty
 };
 
 struct WorkEstimate {
@@ -101,16 +119,27 @@ struct WorkEstimate {
   std::vector<WorkPart> memory;    //!< what the memory is made of
   std::vector<WorkPart> work;      //!< what the steps are made of
 
-  void add_memory(std::string what, double bytes);
+  void add_memory(std::string what, double bytes, std::string remedy = {});
   void add_steps(std::string what, double steps);
 };
 
 //! One run of `study` with `asperities` asperities (its own count when negative: a fixed
-//! list or a drawn realisation); `writes_run_file` adds the run file (`run`), not an
-//! ensemble record. A random surface's sampling and interaction are included. With a
-//! count given, the asperities' natural frequencies are not known: the estimate is then a
-//! lower bound for any realisation with that many (what depends on them is left out).
-WorkEstimate estimate_run(const Study& study, double asperities = -1.0, bool writes_run_file = true);
+//! list or a drawn realisation); `writes_run_file` adds the traces `[output] traces` keeps
+//! and the run file they go to (`run`), not an ensemble record. The asperities' dense
+//! motions are summed and dropped one at a time (a long run's memory does not grow with
+//! their number) unless `keeps_motions` (RunOptions::keep_motions, `export-netlist`) or a
+//! netlist load (ngspice reads them all) keeps every one; `threads` Model 2 asperities are
+//! solved at once (RunOptions::threads), each with its dense output. A random surface's sampling and
+//! interaction are included. With a count given, the asperities' natural frequencies are
+//! not known: the estimate is then a lower bound for any realisation with that many (what
+//! depends on them is left out).
+WorkEstimate estimate_run(const Study& study, double asperities = -1.0, bool writes_run_file = true,
+                          bool keeps_motions = false, std::size_t threads = 1);
+
+//! The most threads, from 1 to `wanted`, a `run` of `study` (RunOptions::threads) may solve
+//! its asperities on within `limits` memory: more than it has asperities gain nothing, and
+//! each holds one asperity's dense output. 1 when even that does not fit (check_work says why).
+std::size_t run_threads_within(const Study& study, std::size_t wanted, const WorkLimits& limits);
 
 //! `stengmc circuit`: `elements` displacement series of `samples` samples.
 WorkEstimate estimate_circuit(double samples, double elements, std::size_t substeps);

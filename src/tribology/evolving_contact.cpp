@@ -254,6 +254,19 @@ void integrate_evolving_contact(const Asperity& asperity, const Model2Params& pa
 
   out.knots.clear();
   out.pieces.clear();
+  if (eps) {
+    // A step ends at every node of eps's grid (the grid is finer than MAX_STEP), and after
+    // the release at most every MAX_STEP: room for them at once rather than by doubling,
+    // which would hold the old and the new arrays together; the dense output of the one
+    // asperity in turn is what a long run's peak memory is made of (docs/output-files.md).
+    const double contact_s = std::min(t_end_s, asperity.release_s - asperity.onset_s);
+    const double steps_expected = contact_s / grid_step_s(asperity, params) +
+                                  (t_end_s - contact_s) * w0 * std::sqrt(kappa_max) / MAX_STEP +
+                                  static_cast<double>(steps.size()) + 16.0;
+    const auto room = static_cast<std::size_t>(1.02 * steps_expected);
+    out.knots.reserve(room + 1);
+    out.pieces.reserve(room);
+  }
   out.accepted_steps = 0;
   out.oscillator_steps = 0;
   out.rejected_steps = 0;

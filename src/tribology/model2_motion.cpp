@@ -114,6 +114,22 @@ PhasePoint Model2Motion::at(double t_s, Side /*side*/) const {
   return on_piece(piece_of(t), t);
 }
 
+std::unique_ptr<Motion> Model2Motion::excerpt(double t0_s, double t1_s) const {
+  if (pieces_.empty()) return std::make_unique<Model2Motion>(Model2Integration{.knots = knots_, .natural_frequency_rad_per_s = w0_});
+  // piece_of(t) is the last knot at or before t (clamped to the pieces): with the pieces of
+  // t0 and t1 and one more on either side, upper_bound meets the same knot in the excerpt,
+  // and at()'s clamp to the ends changes nothing inside (the ends are the motion's own
+  // whenever the excerpt reaches them).
+  const std::size_t p0 = piece_of(t0_s);
+  const std::size_t first = p0 > 0 ? p0 - 1 : 0;
+  const std::size_t last = std::min(piece_of(std::max(t0_s, t1_s)) + 1, pieces_.size() - 1);
+  Model2Integration part;
+  part.knots.assign(knots_.begin() + static_cast<std::ptrdiff_t>(first), knots_.begin() + static_cast<std::ptrdiff_t>(last) + 2);
+  part.pieces.assign(pieces_.begin() + static_cast<std::ptrdiff_t>(first), pieces_.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+  part.natural_frequency_rad_per_s = w0_;
+  return std::make_unique<Model2Motion>(std::move(part));
+}
+
 double Model2Motion::displacement_bound() const {
   double bound = knots_.front().x_m;
   for (std::size_t i = 0; i < pieces_.size(); ++i) {

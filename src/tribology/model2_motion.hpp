@@ -41,6 +41,11 @@ class Model2Motion final : public Motion {
   //! times the growth e^{|zeta| tau} for zeta < 0.
   [[nodiscard]] double displacement_bound() const override;
 
+  //! The knots and pieces that hold [t0_s, t1_s] and one piece more on either side (so that
+  //! piece_of picks the same piece for every time in between): a few knots instead of the
+  //! millions of a long excited run.
+  [[nodiscard]] std::unique_ptr<Motion> excerpt(double t0_s, double t1_s) const override;
+
   //! As Motion::sample; on a uniform grid an oscillator piece is walked by repeated
   //! multiplication with its flow (sample_oscillator_piece: four interleaved walks,
   //! re-anchored in closed form every 128 points, so rounding cannot drift: ~1e-14

@@ -78,6 +78,25 @@ TEST(WorkLimits, TooManySamplesAreRefusedNamingThem) {
                  scratch, {"rate.toml", "samples", "GB of memory"});
 }
 
+//! A long run's traces are what fills memory (issue 26): every trace of 50 excited asperities
+//! over 10 ms at 100 MHz (~6 GB) is refused within 2 GB before anything runs, naming
+//! [output] traces, its size and how to leave it out; without traces the run fits (the
+//! dense motions are dropped one by one once summed).
+TEST(WorkLimits, OversizedTracesAreRefusedNamingOutputTraces) {
+  ScratchDir scratch("limit-traces");
+  const std::string text = "duration_s = 10e-3\nsample_rate_hz = 100e6\n[model]\nkind = \"model2\"\n"
+                           "belt_velocity_m_per_s = 5\n[counterface]\nfriction_modulation_rms = 0.01\n"
+                           "correlation_length_m = 0.5e-6\n[surface]\n[surface.defaults]\nlength_m = 50e-6\n"
+                           "[[surface.asperity]]\nstiffness_n_per_m = 100\ncount = 50\n";
+  const std::string study = scratch.write("traces.toml", text);
+  const auto refused = run_cli("run " + study + " --max-memory-gb 2 -o " + scratch.file("out.h5"), scratch, "timeout 60");
+  expect_refused(refused, scratch,
+                 {"traces.toml", "[output] traces = [\"x\", \"v\", \"friction\", \"current\", \"charge\"]",
+                  "50 asperities x 1e+06 samples", "GB of memory", "traces = [] keeps V and Q only", "--max-memory-gb"});
+  const double bare = estimate_run(parse_study(text + "[output]\ntraces = []\n", study)).memory_bytes;
+  EXPECT_LT(bare, 2e9);  // measured: ~0.7 GB peak (bench/bench_long_run.cpp)
+}
+
 //! Each command takes --max-memory-gb and --max-steps, and applies them.
 TEST(WorkLimits, EveryCommandAppliesTheLimitsItIsGiven) {
   ScratchDir scratch("limit-commands");
