@@ -115,7 +115,7 @@ PhasePoint Model2Motion::at(double t_s, Side /*side*/) const {
 }
 
 std::unique_ptr<Motion> Model2Motion::excerpt(double t0_s, double t1_s) const {
-  if (pieces_.empty()) return std::make_unique<Model2Motion>(Model2Integration{.knots = knots_, .natural_frequency_rad_per_s = w0_});
+  if (pieces_.empty()) return std::make_unique<Model2Motion>(Model2Integration{.knots = knots_, .pieces = {}, .natural_frequency_rad_per_s = w0_});
   // piece_of(t) is the last knot at or before t (clamped to the pieces): with the pieces of
   // t0 and t1 and one more on either side, upper_bound meets the same knot in the excerpt,
   // and at()'s clamp to the ends changes nothing inside (the ends are the motion's own
