@@ -9,8 +9,6 @@
 //  - asperities solved side by side on any number of threads give the same run;
 //  - the memory estimate of an excited run bounds the peak of the real `stengmc run`.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 
 #include <string>
 
@@ -19,6 +17,7 @@
 #include "pipeline/study.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "support/cli_runner.hpp"
+#include "support/peak_memory.hpp"
 #include "tribology/model2.hpp"
 
 namespace stengmc {
@@ -140,20 +139,6 @@ TEST(LongRuns, AsperitiesSolvedSideBySideGiveTheSameRunBitForBit) {
   EXPECT_EQ(error_of(3), sequential);
 }
 
-//! Peak resident memory [bytes] of `stengmc arguments` run as a child process.
-double peak_memory_of(const std::string& arguments) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const std::string command = "exec " + std::string(STENGMC_BINARY) + " " + arguments + " > /dev/null 2>&1";
-    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  int status = 0;
-  rusage usage{};
-  ::wait4(pid, &status, 0, &usage);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << arguments;
-  return static_cast<double>(usage.ru_maxrss) * 1024.0;  // kilobytes on Linux
-}
 
 // Three excited asperities for 2 ms: ~6e5 integrator steps each (a step per node of the
 // modulation's grid), ~70 MB of dense output each. Before the motions were dropped the run
@@ -170,7 +155,7 @@ TEST(LongRuns, MemoryEstimateOfAnExcitedRunBoundsItsPeak) {
     SCOPED_TRACE(traces);
     const std::string with = text + "[output]\ntraces = " + traces + "\n";
     const std::string study = scratch.write("excited.toml", with);
-    const double measured = peak_memory_of("run " + study + " -j 2 -o " + scratch.file("out.h5"));
+    const double measured = testing::peak_memory_of("run " + study + " -j 2 -o " + scratch.file("out.h5"));
     const double estimated = estimate_run(parse_study(with, study), -1.0, true, false, 2).memory_bytes;
     EXPECT_GE(estimated, measured);
     EXPECT_LE(estimated, 3.0 * measured);

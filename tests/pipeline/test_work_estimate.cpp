@@ -8,8 +8,6 @@
 //  - memory: >= the peak resident memory of the real `stengmc run` (getrusage of the child)
 //    and not wildly above it (<= 3 x), so a limit refuses only what would not fit.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 
 #include <string>
 
@@ -18,6 +16,7 @@
 #include "pipeline/run_study.hpp"
 #include "pipeline/work_estimate.hpp"
 #include "support/cli_runner.hpp"
+#include "support/peak_memory.hpp"
 
 namespace stengmc {
 namespace {
@@ -62,20 +61,6 @@ TEST(WorkEstimate, Model2StepsAndEventsBoundTheIntegrators) {
     }
 }
 
-//! Peak resident memory [bytes] of `stengmc arguments` run as a child process.
-double peak_memory_of(const std::string& arguments) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const std::string command = "exec " + std::string(STENGMC_BINARY) + " " + arguments + " > /dev/null 2>&1";
-    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  int status = 0;
-  rusage usage{};
-  ::wait4(pid, &status, 0, &usage);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << arguments;
-  return static_cast<double>(usage.ru_maxrss) * 1024.0;  // kilobytes on Linux
-}
 
 TEST(WorkEstimate, MemoryBoundsThePeakOfARealRunWithinAFactorOfThree) {
 #if defined(__SANITIZE_ADDRESS__)
@@ -87,7 +72,7 @@ TEST(WorkEstimate, MemoryBoundsThePeakOfARealRunWithinAFactorOfThree) {
   const std::string text = "duration_s = 5e-3\nsample_rate_hz = 100e6\n[model]\nkind = \"model1\"\n"
                            "[surface]\n[[surface.asperity]]\nstiffness_n_per_m = 155\ncount = 4\n";
   const std::string study = scratch.write("memory.toml", text);
-  const double measured = peak_memory_of("run " + study + " -o " + scratch.file("out.h5"));
+  const double measured = testing::peak_memory_of("run " + study + " -o " + scratch.file("out.h5"));
   const double estimated = estimate_run(parse_study(text, study)).memory_bytes;
   EXPECT_GE(estimated, measured);
   EXPECT_LE(estimated, 3.0 * measured);
