@@ -422,26 +422,12 @@ def check_not_a_product(path):
               "sweep_repeated.h5: selecting count 2 does not give grid points 0 and 2")
 
 
-# An evolving contact (docs/model.md §1.4): a release, wear and two stiffness steps, whose
-# per-asperity parameters a run file records (steps as a CF contiguous ragged array).
-EVOLVING = """duration_s = 20e-6
-sample_rate_hz = 100e6
-seed = 5
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-[surface]
-[surface.defaults]
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = 100
-wear_rate_per_ms = 0.2
-stiffness_steps = [[5e-6, 1.1], [12e-6, 0.95]]
-[[surface.asperity]]
-stiffness_n_per_m = 60
-onset_s = 2e-6
-release_s = 10e-6
-"""
+def evolving_study():
+    """The evolving contact of tests/support/evolving_contact.toml (shared with
+    pipeline/test_evolving_study.cpp): a release, wear and two stiffness steps, whose
+    per-asperity parameters a run file records (steps as a CF contiguous ragged array)."""
+    with open(os.path.join(SOURCE_DIR, "tests", "support", "evolving_contact.toml")) as f:
+        return f.read()
 
 
 def check_evolving(path):
@@ -494,7 +480,7 @@ def main():
         run(binary, "run", study("surfaces/gw_vb10.toml"), "--realisation", "3", "-o", out("random.h5"), cwd=work)
         run(binary, "circuit", out("run.h5"), "-R", "1e6", "-o", out("circuit.h5"), cwd=work)
         with open(out("evolving.toml"), "w") as f:
-            f.write(EVOLVING)
+            f.write(evolving_study())
         run(binary, "run", out("evolving.toml"), "-o", out("evolving.h5"), cwd=work)
         run(binary, "spectrum", out("run.h5"), "--settings", study("paper/fig6_vb1_l50.toml"), "-o", out("spectrum.h5"),
             cwd=work)

@@ -9,31 +9,13 @@
 #include "pipeline/run_study.hpp"
 #include "pipeline/study.hpp"
 #include "pipeline/study_realisation.hpp"
+#include "support/support_files.hpp"
 
 namespace stengmc {
 namespace {
 
-const std::string EVOLVING = R"(duration_s = 20e-6
-sample_rate_hz = 100e6
-seed = 5
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-[counterface]
-friction_modulation_rms = 0.01
-correlation_length_m = 0.5e-6
-[surface]
-[surface.defaults]
-length_m = 50e-6
-[[surface.asperity]]
-stiffness_n_per_m = 100
-wear_rate_per_ms = 0.2
-stiffness_steps = [[5e-6, 1.1], [12e-6, 0.95]]
-[[surface.asperity]]
-stiffness_n_per_m = 60
-onset_s = 2e-6
-release_s = 10e-6
-)";
+// The evolving contact of tests/support/evolving_contact.toml (shared with io/test_netcdf_outputs.py).
+const std::string EVOLVING = testing::support_file_text("evolving_contact.toml");  // read before any test runs
 
 std::string error_of(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);

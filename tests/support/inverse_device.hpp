@@ -4,14 +4,9 @@
 // [inverse] table's keys.
 #include <string>
 
-#include "core/input_file.hpp"
+#include "support/support_files.hpp"
 
 namespace stengmc::testing {
-
-//! A file of tests/support/ (found through the source folder the build compiles in).
-inline std::string support_file_text(const std::string& name) {
-  return read_text_file(std::string(STENGMC_SOURCE_DIR) + "/tests/support/" + name, "the test support file");
-}
 
 inline std::string known_device_study(const std::string& duration, const std::string& inverse) {
   return "duration_s = " + duration + "\n" + support_file_text("known_device.toml") + "[inverse]\n" + inverse;
