@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "spectral/assignment.hpp"
 
@@ -20,6 +21,16 @@ struct LiveTrack {
 };
 
 const WindowLine& last_line(const LiveTrack& t) { return t.track.sightings.back().line; }
+
+//! Where the gate is centred: the last line, or the median of the last `count` lines [Hz].
+double reference_frequency(const Track& t, std::size_t count) {
+  if (count <= 1) return t.sightings.back().line.frequency_hz;
+  std::vector<double> f;
+  for (std::size_t i = t.sightings.size() > count ? t.sightings.size() - count : 0; i < t.sightings.size(); ++i)
+    f.push_back(t.sightings[i].line.frequency_hz);
+  std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+  return f[f.size() / 2];
+}
 
 //! Median snr of the track's last few sightings: its steady level.
 double recent_level(const Track& t) {
@@ -72,6 +83,87 @@ void merge_steps_of_silent_tracks(std::vector<LiveTrack>& tracks, const LinkSett
   }
 }
 
+//! Median frequency of the sightings of `t` in windows [first, last] [Hz] (0 when none).
+double median_frequency(const Track& t, std::size_t first, std::size_t last) {
+  std::vector<double> f;
+  for (const TrackSighting& x : t.sightings)
+    if (x.window >= first && x.window <= last) f.push_back(x.line.frequency_hz);
+  if (f.empty()) return 0.0;
+  std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+  return f[f.size() / 2];
+}
+
+//! Excited: one driven line often ends up as two tracks taking turns (a side feature starts a
+//! track beside the line, which then takes the line whenever the first track's gate misses it),
+//! and a stiffness step moves the line out of the gate at once. Two tracks within a step's reach
+//! (step_fraction) of each other where they meet, not both heard in most of the windows they
+//! share (min_duty: two driven asperities would be), and the second born before the first has
+//! been silent for max_missed windows, are one asperity: merged (where both are heard, the
+//! stronger line kept). A step between them is found afterwards in the merged track
+//! (track_steps.hpp).
+void merge_interleaved_tracks(std::vector<LiveTrack>& tracks, const LinkSettings& s) {
+  const std::size_t reach = std::max<std::size_t>(1, s.step_overlap_windows);
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t a = 0; a < tracks.size() && !merged; ++a) {
+      Track& first = tracks[a].track;
+      if (first.sightings.empty()) continue;
+      for (std::size_t b = a + 1; b < tracks.size() && !merged; ++b) {
+        Track& second = tracks[b].track;
+        if (second.sightings.empty()) continue;
+        const std::size_t a0 = first.sightings.front().window, a1 = first.sightings.back().window;
+        const std::size_t b0 = second.sightings.front().window, b1 = second.sightings.back().window;
+        if (b0 > a1 + s.max_missed || a0 > b1 + s.max_missed) continue;
+        // Where they meet: the shared windows, or the ends that face each other.
+        const std::size_t lo = std::max(a0, b0), hi = std::min(a1, b1);
+        double fa = 0.0, fb = 0.0;
+        if (lo <= hi) {
+          fa = median_frequency(first, lo > reach ? lo - reach : 0, hi + reach);
+          fb = median_frequency(second, lo > reach ? lo - reach : 0, hi + reach);
+        } else if (a1 < b0) {
+          fa = median_frequency(first, a1 > reach ? a1 - reach : 0, a1);
+          fb = median_frequency(second, b0, b0 + reach);
+        } else {
+          fa = median_frequency(first, a0, a0 + reach);
+          fb = median_frequency(second, b1 > reach ? b1 - reach : 0, b1);
+        }
+        if (!(fa > 0.0 && fb > 0.0) || std::abs(fa - fb) > s.step_fraction * fa) continue;
+        // Two asperities are both heard in most of the windows they share (min_duty), past the
+        // windows that straddle where the second began; unless their lines lie within twice a
+        // window's peak error of each other: two random peaks of one line (a window of two
+        // coherence times often shows the line as two bumps), which the windows cannot tell
+        // from two asperities anyway.
+        const double window_se = std::max(first.sightings.back().line.frequency_se_hz, second.sightings.front().line.frequency_se_hz);
+        if (lo + reach <= hi && std::abs(fa - fb) > 2.0 * window_se) {
+          const auto duty = [&](const Track& t) {
+            const auto heard = std::count_if(t.sightings.begin(), t.sightings.end(),
+                                             [&](const TrackSighting& x) { return x.window >= lo + reach && x.window <= hi; });
+            return static_cast<double>(heard) / static_cast<double>(hi - lo - reach + 1);
+          };
+          if (duty(first) >= s.min_duty && duty(second) >= s.min_duty) continue;
+        }
+        std::vector<TrackSighting> all = first.sightings;
+        all.insert(all.end(), second.sightings.begin(), second.sightings.end());
+        std::stable_sort(all.begin(), all.end(), [](const TrackSighting& x, const TrackSighting& y) { return x.window < y.window; });
+        std::vector<TrackSighting> kept;
+        for (const TrackSighting& x : all)
+          if (!kept.empty() && kept.back().window == x.window) {
+            if (x.line.snr > kept.back().line.snr) kept.back() = x;
+          } else {
+            kept.push_back(x);
+          }
+        first.sightings = std::move(kept);
+        first.onset_level = 0.0;
+        for (std::size_t i = 0; i < std::min<std::size_t>(3, first.sightings.size()); ++i)
+          first.onset_level = std::max(first.onset_level, first.sightings[i].line.snr);
+        first.ended = first.sightings.back().window == a1 ? first.ended : second.ended;
+        second.sightings.clear();
+        merged = true;
+      }
+    }
+  }
+}
+
 //! Excited, an asperity in contact is driven and heard in most windows: a track heard in
 //! fewer than min_duty of the windows it spans is random lines the wide gate strung together.
 bool heard_enough(const Track& t, const LinkSettings& s) {
@@ -99,11 +191,14 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
     for (std::size_t r = 0; r < live.size(); ++r) {
       const LiveTrack& t = tracks[live[r]];
       const WindowLine& last = last_line(t);
+      const double reference_hz = reference_frequency(t.track, s.reference_sightings);
       const double elapsed = static_cast<double>(w - t.track.sightings.back().window);
       for (std::size_t c = 0; c < lines.size(); ++c) {
-        const double df = std::abs(lines[c]->frequency_hz - last.frequency_hz);
-        const double sigma = std::sqrt(lines[c]->frequency_se_hz * lines[c]->frequency_se_hz +
-                                       last.frequency_se_hz * last.frequency_se_hz + s.gate_floor_hz * s.gate_floor_hz);
+        const double df = std::abs(lines[c]->frequency_hz - reference_hz);
+        // (The median of the last lag lines, about two independent ones, halves their variance.)
+        const double track_se = s.reference_sightings > 1 ? last.frequency_se_hz / std::numbers::sqrt2 : last.frequency_se_hz;
+        const double sigma = std::sqrt(lines[c]->frequency_se_hz * lines[c]->frequency_se_hz + track_se * track_se +
+                                       s.gate_floor_hz * s.gate_floor_hz);
         const double drift = s.drift_per_window * elapsed * last.frequency_hz;
         // A track silent for a while is heard again only by a clear line: a weak one then is
         // more likely noise than the asperity ringing again.
@@ -194,6 +289,7 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
     }
   }
   if (s.hold_silent) merge_steps_of_silent_tracks(tracks, s);
+  else if (s.step_overlap_windows > 0) merge_interleaved_tracks(tracks, s);
   std::vector<Track> out;
   for (LiveTrack& t : tracks)
     if (t.track.sightings.size() >= s.min_sightings && heard_enough(t.track, s)) {

@@ -45,6 +45,14 @@ struct LinkSettings {
   double min_duty = 0.5;
   //! c / 2m of the device: the damping of a free ringing [1/s].
   double free_damping_per_s = 0.0;
+  //! Excited (> 0): windows that share samples with one (lag). Tracks that take turns on one
+  //! line, or meet within step_fraction of each other (a step moves a driven line out of the
+  //! gate at once), are merged, their lines compared over this many windows where they meet.
+  std::size_t step_overlap_windows = 0;
+  //! > 0 (excited): the gate is centred on the median of the track's last this many lines
+  //! instead of its last line: a short window's peak of a random narrow-band line scatters by
+  //! ~1/T about the line's centre, and one stray sighting would drag a last-line gate with it.
+  std::size_t reference_sightings = 0;
 };
 
 struct TrackSighting {

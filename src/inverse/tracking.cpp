@@ -14,9 +14,11 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
+#include "inverse/driven_steps.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/noise_level.hpp"
 #include "inverse/track_lines.hpp"
+#include "inverse/track_peaks.hpp"
 #include "inverse/track_steps.hpp"
 
 namespace stengmc {
@@ -84,7 +86,8 @@ void set_interval(const KnownDevice& device, WindowLine& line, double inflation)
 }
 
 //! Windows and lines, in parallel (each window on its own; the naive counter owns an FFT plan).
-std::vector<WindowLines> detect_all(const LineDetector& detector, const RecordGrid& grid, std::span<const double> v,
+template <class Detector>
+std::vector<WindowLines> detect_all(const Detector& detector, const RecordGrid& grid, std::span<const double> v,
                                     const std::vector<TrackWindow>& windows, const TrackingSettings& settings,
                                     std::size_t length, std::vector<double>& naive, Progress* progress) {
   std::vector<WindowLines> lines(windows.size());
@@ -150,6 +153,7 @@ void add_segments(const KnownDevice& device, const Track& track, std::size_t t, 
       s.windows = used;
       s.frequency_hz = sum_wf / sum_w;
       const double se = std::sqrt(overlap / sum_w);
+      s.frequency_se_hz = se;
       s.stiffness_n_per_m = stiffness_at(device, s.frequency_hz);
       s.stiffness_low = stiffness_at(device, std::max(0.0, s.frequency_hz - Z90 * se));
       s.stiffness_high = stiffness_at(device, s.frequency_hz + Z90 * se);
@@ -158,6 +162,21 @@ void add_segments(const KnownDevice& device, const Track& track, std::size_t t, 
     start = end;
     if (start >= last) break;
   }
+}
+
+//! The median line of every other track heard at the same time as track `t` [Hz]: a segment's
+//! fit band stops half-way to them.
+std::vector<double> concurrent_lines(const std::vector<Track>& tracks, std::size_t t) {
+  std::vector<double> lines;
+  const std::size_t first = tracks[t].sightings.front().window, last = tracks[t].sightings.back().window;
+  for (std::size_t o = 0; o < tracks.size(); ++o) {
+    if (o == t || tracks[o].sightings.back().window < first || tracks[o].sightings.front().window > last) continue;
+    std::vector<double> f;
+    for (const TrackSighting& s : tracks[o].sightings) f.push_back(s.line.frequency_hz);
+    std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+    lines.push_back(f[f.size() / 2]);
+  }
+  return lines;
 }
 
 }  // namespace
@@ -212,27 +231,33 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   detection.sample_rate_hz = fs;
   detection.threshold_snr = settings.threshold_snr;
   const double window_length_s = static_cast<double>(r.windowing.length) * grid.step_s;
-  detection.cluster_hz = r.excited ? 1.0 / window_length_s : 0.0;
-  detection.dynamic_range = r.excited ? 0.1 : 0.0;
-  const LineDetector detector(device, detection);
+  detection.cluster_hz = r.excited ? 2.0 / window_length_s : 0.0;
+  detection.dynamic_range = 0.0;  // (excited: the peaks' tail rule replaces it, track_peaks.cpp)
+  // Unexcited, lines are free ringings: ESPRIT's damped sinusoids. Excited, they are random
+  // narrow-band processes: periodogram peaks (inverse/track_peaks.hpp).
   const std::vector<WindowLines> lines =
-      detect_all(detector, grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress);
+      r.excited ? detect_all(PeakLineDetector(device, detection), grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress)
+                : detect_all(LineDetector(device, detection), grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress);
   for (const WindowLines& w : lines) r.window_mean_v.push_back(w.mean_v);
 
   const double hop_s = static_cast<double>(r.windowing.hop) * grid.step_s;
   const std::size_t lag = (r.windowing.length + r.windowing.hop - 1) / r.windowing.hop;
   LinkSettings link;
-  link.gate_floor_hz = r.excited ? device.model.damping_n_s_per_m / (4.0 * std::numbers::pi * device.asperity.mass_kg) : 0.0;
+  // (Excited, each window's peak error already holds the line's random wander: track_peaks.hpp.)
+  link.gate_floor_hz = 0.0;
   link.drift_per_window = 0.5 * settings.max_wear_per_ms * hop_s / 1e-3;
   // Excited, a driven line fades for tens of us at a time (its envelope is random): a track
-  // outlives four window overlaps unheard. Its release is timed by its ring-down, not by this.
-  link.max_missed = r.excited ? std::max(settings.max_missed, 4 * lag) : settings.max_missed;
+  // outlives two window lengths unheard (80 us: a fade of a 40 us window of the line is rare).
+  // Its release is timed by its ring-down, not by this.
+  link.max_missed = r.excited ? std::max(settings.max_missed, 2 * lag) : settings.max_missed;
+  link.reference_sightings = r.excited ? lag : 0;
   link.hold_silent = !r.excited;
   // A track must outlast a window: overlapping windows share samples, so one random feature
   // (the off-resonance response an excited asperity adds, which ESPRIT also fits; a noise
   // excursion) shows in `lag` consecutive windows. A real event rings for 20 us and more.
   link.min_sightings = lag + 2;
   link.free_damping_per_s = device.damping_rate_per_s();
+  link.step_overlap_windows = r.excited ? lag : 0;
   r.tracks = link_tracks(lines, link);
   if (r.excited) {
     // An excited line wanders between windows by more than its Cramer-Rao error (and, near
@@ -250,10 +275,21 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     r.error_inflation.push_back(inflation);
     for (TrackSighting& s : track.sightings) set_interval(device, s.line, inflation);
   }
-  for (Track& track : r.tracks) find_steps(track, r.windows, lag, r.excited);
+  for (std::size_t t = 0; t < r.tracks.size(); ++t) {
+    if (r.excited) find_driven_steps(device, r.tracks[t], r.windows, grid, v, concurrent_lines(r.tracks, t));
+    else find_steps(r.tracks[t], r.windows, lag, r.excited);
+  }
   r.events = track_events(r.tracks, r.windows, r.excited);
   const double overlap = static_cast<double>(r.windowing.length) / static_cast<double>(r.windowing.hop);
-  for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
+  if (r.excited) {
+    for (std::size_t t = 0; t < r.tracks.size(); ++t) {
+      const std::vector<double> others = concurrent_lines(r.tracks, t);
+      const std::vector<TrackSegment> fitted = fit_driven_segments(device, r.tracks[t], t, r.windows, grid, v, others);
+      r.segments.insert(r.segments.end(), fitted.begin(), fitted.end());
+    }
+  } else {
+    for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
+  }
 
   // k(t), f(t) and n(t). A track's asperity is in contact from its first window to its release;
   // where its line is not heard, k is held at its last value and its interval widens by the

@@ -11,6 +11,7 @@
 #include "inverse/record_grid.hpp"
 #include "inverse/track_events.hpp"
 #include "inverse/track_linking.hpp"
+#include "inverse/track_segments.hpp"
 #include "inverse/track_windows.hpp"
 
 namespace stengmc {
@@ -27,18 +28,6 @@ struct TrackingSettings {
   //! peak search's, at half its default of 10: the windows are short).
   double naive_threshold = 5.0;
   int threads = 1;
-};
-
-//! A track's stiffness between two of its events: the inverse-variance mean over its windows
-//! (the windows beside a step left out: they straddle it).
-struct TrackSegment {
-  std::size_t track = 0;
-  double start_s = 0.0, end_s = 0.0;  //!< first and last window centre it covers [s]
-  std::size_t windows = 0;            //!< windows averaged
-  double frequency_hz = 0.0;
-  double stiffness_n_per_m = 0.0;
-  double stiffness_low = 0.0;         //!< 90 % interval [N/m]
-  double stiffness_high = 0.0;
 };
 
 struct TrackingResult {

@@ -1,0 +1,67 @@
+#include "inverse/track_segments.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "inverse/line_centre_fit.hpp"
+#include "inverse/track_lines.hpp"
+
+namespace stengmc {
+
+std::vector<SegmentSpan> segment_spans(const Track& track, const std::vector<TrackWindow>& windows) {
+  std::vector<SegmentSpan> spans;
+  const std::vector<TrackSighting>& s = track.sightings;
+  const std::size_t heard = track.released ? track.release_sighting : s.size();
+  if (heard == 0) return spans;
+  double start_s = windows[s.front().window].centre_s;
+  std::size_t first = 0;
+  for (const StepMark& m : track.steps) {
+    if (m.sighting >= heard || m.sighting <= first) continue;
+    spans.push_back({start_s, m.low_s, first, m.sighting});
+    start_s = m.high_s;
+    first = m.sighting;
+  }
+  const double end_s = track.released ? windows[s[track.release_sighting].window].start_s : windows[s[heard - 1].window].centre_s;
+  spans.push_back({start_s, end_s, first, heard});
+  return spans;
+}
+
+std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const Track& track, std::size_t index,
+                                              const std::vector<TrackWindow>& windows, const RecordGrid& grid,
+                                              std::span<const double> v, std::span<const double> neighbours_hz) {
+  std::vector<TrackSegment> segments;
+  const double gamma = device.damping_rate_per_s();
+  const double half_width_hz = gamma / (2.0 * std::numbers::pi);
+  const double shortest_s = 4.0 / gamma;  // 4 tau (tau = 2m/c = 1/gamma)
+  for (const SegmentSpan& span : segment_spans(track, windows)) {
+    if (span.end_s - span.start_s < shortest_s || span.last <= span.first) continue;
+    std::vector<double> f;
+    for (std::size_t i = span.first; i < span.last; ++i) f.push_back(track.sightings[i].line.frequency_hz);
+    std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+    const double guess = f[f.size() / 2];
+    double reach = 12.0 * half_width_hz;
+    for (double other : neighbours_hz)
+      if (std::abs(other - guess) > 1e-9 * guess) reach = std::min(reach, std::max(3.0 * half_width_hz, 0.5 * std::abs(other - guess)));
+    const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((span.start_s - grid.start_s) / grid.step_s)));
+    const auto last = std::min(grid.samples, static_cast<std::size_t>(std::floor((span.end_s - grid.start_s) / grid.step_s)) + 1);
+    if (last <= first + 16) continue;
+    const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), guess - reach, guess + reach);
+    const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz);
+    if (!fit.valid) continue;
+    TrackSegment g;
+    g.track = index;
+    g.start_s = span.start_s;
+    g.end_s = span.end_s;
+    g.windows = span.last - span.first;
+    g.frequency_hz = fit.centre_hz;
+    g.frequency_se_hz = fit.centre_se_hz;
+    g.stiffness_n_per_m = stiffness_at(device, fit.centre_hz);
+    g.stiffness_low = stiffness_at(device, std::max(0.0, fit.centre_hz - Z90 * fit.centre_se_hz));
+    g.stiffness_high = stiffness_at(device, fit.centre_hz + Z90 * fit.centre_se_hz);
+    segments.push_back(g);
+  }
+  return segments;
+}
+
+}  // namespace stengmc
