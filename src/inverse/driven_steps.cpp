@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <numbers>
 
 #include "inverse/line_centre_fit.hpp"
@@ -24,21 +26,28 @@ class StepSearch {
       : track_(track), windows_(windows), grid_(grid), v_(v), low_hz_(low_hz), high_hz_(high_hz),
         half_width_hz_(device.damping_rate_per_s() / (2.0 * std::numbers::pi)) {}
 
-  //! The line fitted over [start_s, end_s), started at the median of the sightings whose window centre lies in it.
-  PieceFit fit(double start_s, double end_s) const {
-    PieceFit out;
+  //! The median line of the sightings whose window centre lies in [start_s, end_s) [Hz] (0: none).
+  double median_line(double start_s, double end_s) const {
     std::vector<double> f;
     for (const TrackSighting& s : track_.sightings) {
       const double c = windows_[s.window].centre_s;
       if (c >= start_s && c < end_s) f.push_back(s.line.frequency_hz);
     }
-    if (f.empty()) return out;
+    if (f.empty()) return 0.0;
     std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+    return f[f.size() / 2];
+  }
+
+  //! The line fitted over [start_s, end_s), started at the median of the sightings whose window centre lies in it.
+  PieceFit fit(double start_s, double end_s) const {
+    PieceFit out;
+    const double guess = median_line(start_s, end_s);
+    if (!(guess > 0.0)) return out;
     const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((start_s - grid_.start_s) / grid_.step_s)));
     const auto last = std::min(grid_.samples, static_cast<std::size_t>(std::max(0.0, std::ceil((end_s - grid_.start_s) / grid_.step_s))));
     if (last <= first + 16) return out;
     const LocalPeriodogram p = local_periodogram(v_.subspan(first, last - first), grid_.sample_rate_hz(), low_hz_, high_hz_);
-    const LorentzianFit lf = fit_lorentzian(p, f[f.size() / 2], half_width_hz_);
+    const LorentzianFit lf = fit_lorentzian(p, guess, half_width_hz_);
     out.valid = lf.valid;
     out.log_likelihood = lf.log_likelihood;
     out.centre_hz = lf.centre_hz;
@@ -49,25 +58,71 @@ class StepSearch {
   //! Splits of [start_s, end_s) into pieces of at least `shortest_s`, recursively.
   void split(double start_s, double end_s, double shortest_s, double hop_s, double z_threshold, std::vector<StepMark>& steps) const {
     if (end_s - start_s < 2.0 * shortest_s) return;
-    // Coarse then fine: every 4 hops, then every hop around the best.
-    auto profile = [&](double t) {
-      const PieceFit a = fit(start_s, t), b = fit(t, end_s);
-      return std::pair<double, bool>{a.log_likelihood + b.log_likelihood, a.valid && b.valid};
+    // Locating the split: the pieces' periodograms on the whole span's Fourier grid, from
+    // running DTFT sums at every hop (one pass over the samples, then O(ordinates) a split).
+    // A piece of length T_p sees those ordinates oversampled T / T_p times: its Whittle
+    // log-likelihood is weighted by T_p / T. The split found, the two pieces are fitted on
+    // their own grids for the test.
+    const double fs = grid_.sample_rate_hz();
+    const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((start_s - grid_.start_s) / grid_.step_s)));
+    const auto last = std::min(grid_.samples, static_cast<std::size_t>(std::max(0.0, std::ceil((end_s - grid_.start_s) / grid_.step_s))));
+    const auto hop = static_cast<std::size_t>(std::max(1.0, std::round(hop_s / grid_.step_s)));
+    const auto shortest = static_cast<std::size_t>(std::round(shortest_s / grid_.step_s));
+    if (last <= first + 2 * shortest) return;
+    const std::size_t n = last - first;
+    const double bin = fs / static_cast<double>(n);
+    std::vector<double> frequencies;
+    for (auto j = static_cast<std::size_t>(std::ceil(low_hz_ / bin)); static_cast<double>(j) * bin <= high_hz_; ++j)
+      frequencies.push_back(static_cast<double>(j) * bin);
+    if (frequencies.size() < 8) return;
+    const std::size_t marks = n / hop + 1;
+    std::vector<std::complex<double>> running(frequencies.size() * (marks + 1));  // [mark][frequency]
+    std::vector<std::size_t> at(marks + 1);
+    {
+      std::vector<std::complex<double>> sum(frequencies.size()), phasor(frequencies.size(), 1.0), rotation;
+      for (double f : frequencies) rotation.push_back(std::polar(1.0, -2.0 * std::numbers::pi * f / fs));
+      std::size_t mark = 0;
+      for (std::size_t i = 0; i <= n; ++i) {
+        if (i % hop == 0 || i == n) {
+          std::copy(sum.begin(), sum.end(), running.begin() + static_cast<std::ptrdiff_t>(mark * frequencies.size()));
+          at[mark++] = i;
+          if (i == n) break;
+        }
+        const double y = v_[first + i];
+        for (std::size_t j = 0; j < frequencies.size(); ++j) {
+          sum[j] += y * phasor[j];
+          phasor[j] *= rotation[j];
+        }
+        if ((i & 1023u) == 1023u)
+          for (std::complex<double>& p : phasor) p /= std::abs(p);
+      }
+      at.resize(mark);
+    }
+    const std::size_t total_marks = at.size();
+    auto piece = [&](std::size_t m0, std::size_t m1) {
+      LocalPeriodogram p;
+      p.frequency_hz = frequencies;
+      const double samples = static_cast<double>(at[m1] - at[m0]);
+      p.span_s = samples / fs;
+      for (std::size_t j = 0; j < frequencies.size(); ++j)
+        p.power.push_back(std::norm(running[m1 * frequencies.size() + j] - running[m0 * frequencies.size() + j]) / samples);
+      const double start = start_s + static_cast<double>(at[m0]) / fs, end = start_s + static_cast<double>(at[m1]) / fs;
+      const LorentzianFit lf = fit_lorentzian(p, median_line(start, end), half_width_hz_);
+      return std::pair<double, bool>{lf.log_likelihood * samples / static_cast<double>(n), lf.valid};
     };
-    double best_t = 0.0, best_l = -std::numeric_limits<double>::infinity();
-    for (double t = start_s + shortest_s; t <= end_s - shortest_s; t += 4.0 * hop_s) {
-      const auto [l, ok] = profile(t);
-      if (ok && l > best_l) best_l = l, best_t = t;
+    double best_l = -std::numeric_limits<double>::infinity();
+    std::size_t best = 0;
+    std::vector<double> profile(total_marks, -std::numeric_limits<double>::infinity());
+    for (std::size_t m = 1; m + 1 < total_marks; ++m) {
+      if (at[m] < shortest || n - at[m] < shortest) continue;
+      const auto [la, oka] = piece(0, m);
+      const auto [lb, okb] = piece(m, total_marks - 1);
+      if (!oka || !okb) continue;
+      profile[m] = la + lb;
+      if (profile[m] > best_l) best_l = profile[m], best = m;
     }
     if (!std::isfinite(best_l)) return;
-    std::vector<std::pair<double, double>> fine;
-    for (double t = std::max(start_s + shortest_s, best_t - 4.0 * hop_s); t <= std::min(end_s - shortest_s, best_t + 4.0 * hop_s);
-         t += hop_s) {
-      const auto [l, ok] = profile(t);
-      if (!ok) continue;
-      fine.emplace_back(t, l);
-      if (l > best_l) best_l = l, best_t = t;
-    }
+    const double best_t = start_s + static_cast<double>(at[best]) / fs;
     const PieceFit before = fit(start_s, best_t), after = fit(best_t, end_s);
     if (!before.valid || !after.valid) return;
     const double z = std::abs(after.centre_hz - before.centre_hz) / std::hypot(before.centre_se_hz, after.centre_se_hz);
@@ -76,8 +131,12 @@ class StepSearch {
     m.time_s = best_t;
     m.low_s = best_t - hop_s;
     m.high_s = best_t + hop_s;
-    for (const auto& [t, l] : fine)
-      if (l >= best_l - 1.35) m.low_s = std::min(m.low_s, t - hop_s), m.high_s = std::max(m.high_s, t + hop_s);
+    for (std::size_t k = 0; k < total_marks; ++k)
+      if (profile[k] >= best_l - 1.35) {
+        const double t = start_s + static_cast<double>(at[k]) / fs;
+        m.low_s = std::min(m.low_s, t - hop_s);
+        m.high_s = std::max(m.high_s, t + hop_s);
+      }
     steps.push_back(m);
     split(start_s, m.low_s, shortest_s, hop_s, z_threshold, steps);
     split(m.high_s, end_s, shortest_s, hop_s, z_threshold, steps);

@@ -275,18 +275,26 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     r.error_inflation.push_back(inflation);
     for (TrackSighting& s : track.sightings) set_interval(device, s.line, inflation);
   }
-  for (std::size_t t = 0; t < r.tracks.size(); ++t) {
-    if (r.excited) find_driven_steps(device, r.tracks[t], r.windows, grid, v, concurrent_lines(r.tracks, t));
+  // Tracks in parallel: each search and fit reads the record and its own track only.
+  std::vector<std::vector<double>> neighbours;
+  for (std::size_t t = 0; t < r.tracks.size(); ++t) neighbours.push_back(concurrent_lines(r.tracks, t));
+  const auto track_count = static_cast<std::int64_t>(r.tracks.size());
+#pragma omp parallel for num_threads(std::max(1, settings.threads)) schedule(dynamic, 1)
+  for (std::int64_t i = 0; i < track_count; ++i) {
+    const auto t = static_cast<std::size_t>(i);
+    if (r.excited) find_driven_steps(device, r.tracks[t], r.windows, grid, v, neighbours[t]);
     else find_steps(r.tracks[t], r.windows, lag, r.excited);
   }
   r.events = track_events(r.tracks, r.windows, r.excited);
   const double overlap = static_cast<double>(r.windowing.length) / static_cast<double>(r.windowing.hop);
   if (r.excited) {
-    for (std::size_t t = 0; t < r.tracks.size(); ++t) {
-      const std::vector<double> others = concurrent_lines(r.tracks, t);
-      const std::vector<TrackSegment> fitted = fit_driven_segments(device, r.tracks[t], t, r.windows, grid, v, others);
-      r.segments.insert(r.segments.end(), fitted.begin(), fitted.end());
+    std::vector<std::vector<TrackSegment>> fitted(r.tracks.size());
+#pragma omp parallel for num_threads(std::max(1, settings.threads)) schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < track_count; ++i) {
+      const auto t = static_cast<std::size_t>(i);
+      fitted[t] = fit_driven_segments(device, r.tracks[t], t, r.windows, grid, v, neighbours[t]);
     }
+    for (const std::vector<TrackSegment>& f : fitted) r.segments.insert(r.segments.end(), f.begin(), f.end());
   } else {
     for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
   }
