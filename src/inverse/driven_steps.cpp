@@ -1,5 +1,6 @@
 #include "inverse/driven_steps.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -53,6 +54,54 @@ class StepSearch {
     out.centre_hz = lf.centre_hz;
     out.centre_se_hz = lf.centre_se_hz;
     return out;
+  }
+
+  //! The line's jump at `split_s` over its standard error: pieces of about `piece_s` on either
+  //! side fitted (independent, each with its Whittle error), and their centres by weighted least
+  //! squares with a level on each side and one common slope (wear drifts the line: a drift is
+  //! no step, and a two-level model with no slope would take it for one). The error is scaled by
+  //! the Birge ratio sqrt(chi^2 / dof) when the pieces scatter more than their errors say.
+  double jump_z(double start_s, double split_s, double end_s, double piece_s) const {
+    struct Centre {
+      int side;
+      double time_s, centre_hz, se_hz;
+    };
+    std::vector<Centre> centres;
+    for (int side = 0; side < 2; ++side) {
+      const double a = side == 0 ? start_s : split_s, b = side == 0 ? split_s : end_s;
+      const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(std::floor((b - a) / piece_s)));
+      const double length = (b - a) / static_cast<double>(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        const double p0 = a + static_cast<double>(i) * length;
+        const PieceFit f = fit(p0, p0 + length);
+        if (f.valid) centres.push_back({side, p0 + 0.5 * length - split_s, f.centre_hz, f.centre_se_hz});
+      }
+    }
+    const bool both = std::any_of(centres.begin(), centres.end(), [](const Centre& c) { return c.side == 0; }) &&
+                      std::any_of(centres.begin(), centres.end(), [](const Centre& c) { return c.side == 1; });
+    if (!both || centres.size() < 3) return 0.0;
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d right = Eigen::Vector3d::Zero();
+    for (const Centre& c : centres) {
+      const Eigen::Vector3d x(c.side == 0 ? 1.0 : 0.0, c.side == 1 ? 1.0 : 0.0, c.time_s);
+      const double w = 1.0 / (c.se_hz * c.se_hz);
+      normal += w * x * x.transpose();
+      right += w * c.centre_hz * x;
+    }
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return 0.0;
+    const Eigen::Vector3d beta = ldlt.solve(right);
+    const Eigen::Matrix3d covariance = ldlt.solve(Eigen::Matrix3d::Identity());
+    double chi2 = 0.0;
+    for (const Centre& c : centres) {
+      const double r = (c.centre_hz - beta(c.side) - beta(2) * c.time_s) / c.se_hz;
+      chi2 += r * r;
+    }
+    const double dof = static_cast<double>(centres.size()) - 3.0;
+    const double birge = dof >= 1.0 ? std::max(1.0, std::sqrt(chi2 / dof)) : 1.0;
+    const double variance = covariance(0, 0) + covariance(1, 1) - 2.0 * covariance(0, 1);
+    if (!(variance > 0.0)) return 0.0;
+    return std::abs(beta(1) - beta(0)) / (birge * std::sqrt(variance));
   }
 
   //! Splits of [start_s, end_s) into pieces of at least `shortest_s`, recursively.
@@ -123,10 +172,7 @@ class StepSearch {
     }
     if (!std::isfinite(best_l)) return;
     const double best_t = start_s + static_cast<double>(at[best]) / fs;
-    const PieceFit before = fit(start_s, best_t), after = fit(best_t, end_s);
-    if (!before.valid || !after.valid) return;
-    const double z = std::abs(after.centre_hz - before.centre_hz) / std::hypot(before.centre_se_hz, after.centre_se_hz);
-    if (!(z >= z_threshold)) return;
+    if (!(jump_z(start_s, best_t, end_s, shortest_s) >= z_threshold)) return;
     StepMark m;
     m.time_s = best_t;
     m.low_s = best_t - hop_s;

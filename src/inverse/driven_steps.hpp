@@ -3,9 +3,10 @@
 //! jumps. Found by binary segmentation of the track's span with the Whittle likelihood of one
 //! stationary Lorentzian line per piece (line_centre_fit.hpp; piecewise-stationary segmentation
 //! by likelihood as in Davis, Lee & Rodriguez-Yam, J. Am. Stat. Assoc. 101 (2006)): the split
-//! that maximises the likelihood of two lines over one, kept when the two centres differ by at
-//! least `z_threshold` of their joint standard error (a Wald test; a line's wander inside a
-//! stationary segment is what that error describes), each piece at least 4 tau long.
+//! that maximises the likelihood of two lines over one, kept when the line jumps there by at
+//! least `z_threshold` of the jump's standard error (a Wald test on pieces of 4 tau either side,
+//! fitted with a level each and a common slope: wear drifts the line, and a drift is no step),
+//! each side at least 4 tau long.
 #include <span>
 #include <vector>
 

@@ -38,16 +38,26 @@ std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const T
     if (span.end_s - span.start_s < shortest_s || span.last <= span.first) continue;
     std::vector<double> f;
     for (std::size_t i = span.first; i < span.last; ++i) f.push_back(track.sightings[i].line.frequency_hz);
-    std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+    std::sort(f.begin(), f.end());
     const double guess = f[f.size() / 2];
-    double reach = 12.0 * half_width_hz;
-    for (double other : neighbours_hz)
-      if (std::abs(other - guess) > 1e-9 * guess) reach = std::min(reach, std::max(3.0 * half_width_hz, 0.5 * std::abs(other - guess)));
+    // The band holds the windows' lines (10-90 %: a wearing line drifts across the segment)
+    // and 12 half-widths beyond, or half-way to a neighbour's line.
+    const double f_low = f[f.size() / 10], f_high = f[f.size() - 1 - f.size() / 10];
+    double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
+    for (double other : neighbours_hz) {
+      if (other < f_low) below = std::min(below, std::max(3.0 * half_width_hz, 0.5 * (f_low - other)));
+      if (other > f_high) above = std::min(above, std::max(3.0 * half_width_hz, 0.5 * (other - f_high)));
+    }
     const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((span.start_s - grid.start_s) / grid.step_s)));
     const auto last = std::min(grid.samples, static_cast<std::size_t>(std::floor((span.end_s - grid.start_s) / grid.step_s)) + 1);
     if (last <= first + 16) continue;
-    const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), guess - reach, guess + reach);
-    const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz);
+    const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), f_low - below, f_high + above);
+    // A stationary line's window peaks spread over ~2.6 x their error (10-90 %); a line that
+    // drifts (wear) further is smeared over the span: its width is fitted too (the centre is
+    // then the span's middle, its error that of the wider line).
+    const double window_se = track.sightings[span.first].line.frequency_se_hz;
+    const bool drifting = f_high - f_low > 4.0 * window_se;
+    const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting);
     if (!fit.valid) continue;
     TrackSegment g;
     g.track = index;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <set>
 
 #include "core/error.hpp"
@@ -20,6 +21,7 @@
 #include "inverse/track_lines.hpp"
 #include "inverse/track_peaks.hpp"
 #include "inverse/track_steps.hpp"
+#include "inverse/track_wear.hpp"
 
 namespace stengmc {
 
@@ -289,12 +291,16 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   const double overlap = static_cast<double>(r.windowing.length) / static_cast<double>(r.windowing.hop);
   if (r.excited) {
     std::vector<std::vector<TrackSegment>> fitted(r.tracks.size());
+    std::vector<std::optional<TrackWear>> wear(r.tracks.size());
 #pragma omp parallel for num_threads(std::max(1, settings.threads)) schedule(dynamic, 1)
     for (std::int64_t i = 0; i < track_count; ++i) {
       const auto t = static_cast<std::size_t>(i);
       fitted[t] = fit_driven_segments(device, r.tracks[t], t, r.windows, grid, v, neighbours[t]);
+      wear[t] = fit_track_wear(device, r.tracks[t], t, fitted[t], grid, v, neighbours[t], r.windows);
     }
     for (const std::vector<TrackSegment>& f : fitted) r.segments.insert(r.segments.end(), f.begin(), f.end());
+    for (const std::optional<TrackWear>& w : wear)
+      if (w) r.wear.push_back(*w);
   } else {
     for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
   }
@@ -353,6 +359,26 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
       else uncertain[w].push_back(p);
     }
   }
+  // Excited, k(t) where a segment was fitted is the segment's line centre (with the track's
+  // fitted wear about the segment's middle): a window's peak wanders by ~1/T about it
+  // (track_peaks.hpp). Its variance: the segment's plus the slope's over the time from its middle.
+  if (r.excited)
+    for (const TrackSegment& g : r.segments) {
+      double slope = 0.0, slope_se = 0.0;
+      for (const TrackWear& w : r.wear)
+        if (w.track == g.track) slope = w.slope_per_s, slope_se = w.slope_se_per_s;
+      const double middle = 0.5 * (g.start_s + g.end_s);
+      const double se = (g.stiffness_high - g.stiffness_low) / (2.0 * Z90);
+      for (std::size_t w = 0; w < nw; ++w) {
+        const double c = r.windows[w].centre_s;
+        if (c < g.start_s || c > g.end_s || std::isnan(r.stiffness[g.track][w])) continue;
+        const double k = g.stiffness_n_per_m * (1.0 + slope * (c - middle));
+        const double spread = Z90 * std::hypot(se, g.stiffness_n_per_m * slope_se * (c - middle));
+        r.stiffness[g.track][w] = k;
+        r.stiffness_low[g.track][w] = k - spread;
+        r.stiffness_high[g.track][w] = k + spread;
+      }
+    }
   // The count: tracks in contact (a track whose best line is near the threshold counted when
   // it is more likely real than not). Its interval: the Poisson-binomial 5-95 % range of the
   // uncertain tracks and of the lines heard in no track near the threshold (p = Phi(z - z_th):

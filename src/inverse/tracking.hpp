@@ -12,6 +12,7 @@
 #include "inverse/track_events.hpp"
 #include "inverse/track_linking.hpp"
 #include "inverse/track_segments.hpp"
+#include "inverse/track_wear.hpp"
 #include "inverse/track_windows.hpp"
 
 namespace stengmc {
@@ -47,6 +48,7 @@ struct TrackingResult {
   std::vector<Track> tracks;
   std::vector<TrackEvent> events;
   std::vector<TrackSegment> segments;
+  std::vector<TrackWear> wear;              //!< excited: each track's fitted wear (tracks with enough pieces)
   double seconds = 0.0;                     //!< computing time
 };
 
