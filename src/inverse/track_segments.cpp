@@ -59,16 +59,28 @@ std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const T
     const bool drifting = f_high - f_low > 4.0 * window_se;
     const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting);
     if (!fit.valid) continue;
+    // The model's adequacy: the windows' peaks about the fitted centre against their own
+    // error (the line's wander in a window: track_peaks.hpp). A stationary line gives a mean
+    // square of ~1; a track that mixes two asperities' lines, or drifts, more: the centre's
+    // error is scaled by that Birge ratio sqrt(mean r^2) (never below 1).
+    double sum_r2 = 0.0;
+    for (std::size_t i = span.first; i < span.last; ++i) {
+      const WindowLine& l = track.sightings[i].line;
+      const double r = (l.frequency_hz - fit.centre_hz) / l.frequency_se_hz;
+      sum_r2 += r * r;
+    }
+    const double birge = std::max(1.0, std::sqrt(sum_r2 / static_cast<double>(span.last - span.first)));
+    const double se_hz = birge * fit.centre_se_hz;
     TrackSegment g;
     g.track = index;
     g.start_s = span.start_s;
     g.end_s = span.end_s;
     g.windows = span.last - span.first;
     g.frequency_hz = fit.centre_hz;
-    g.frequency_se_hz = fit.centre_se_hz;
+    g.frequency_se_hz = se_hz;
     g.stiffness_n_per_m = stiffness_at(device, fit.centre_hz);
-    g.stiffness_low = stiffness_at(device, std::max(0.0, fit.centre_hz - Z90 * fit.centre_se_hz));
-    g.stiffness_high = stiffness_at(device, fit.centre_hz + Z90 * fit.centre_se_hz);
+    g.stiffness_low = stiffness_at(device, std::max(0.0, fit.centre_hz - Z90 * se_hz));
+    g.stiffness_high = stiffness_at(device, fit.centre_hz + Z90 * se_hz);
     segments.push_back(g);
   }
   return segments;

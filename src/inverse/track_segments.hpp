@@ -31,6 +31,8 @@ struct TrackSegment {
 //! left out), in a band of 12 half-widths (c / 4 pi m) each side of the segment's median window
 //! frequency, narrowed to half-way to any other track's line heard at the same time
 //! (`neighbours_hz`). Its 90 % interval is the centre +- 1.645 x the Whittle curvature's error.
+//! The error is scaled by the Birge ratio of the segment's windows about the centre (at least
+//! 1: a track that mixes lines or drifts is less sure than a stationary line's bound).
 //! A segment shorter than 4 tau = 8 m / c is not fitted (too few ordinates).
 std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const Track& track, std::size_t index,
                                               const std::vector<TrackWindow>& windows, const RecordGrid& grid,
