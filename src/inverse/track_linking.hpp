@@ -77,8 +77,8 @@ struct Track {
 };
 
 //! Excited regime: a track whose last sightings (at least three) are all a free ringing
-//! (ESPRIT damping within [0.6, 1.6] x c/2m; in contact the random line's fitted damping
-//! scatters by ~1e5 /s either way) whose level falls is released: the release is the first
+//! (damping within [0.6, 1.6] x c/2m, from the periodogram peak's two window halves; in
+//! contact the random line's damping scatters by ~1e5 /s either way) whose level falls is released: the release is the first
 //! of them (the counterface no longer drives the asperity, so it rings down from where it
 //! was let go). Sets released and release_sighting.
 void find_free_ringdown(Track& track, double free_damping_per_s);

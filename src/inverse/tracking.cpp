@@ -375,7 +375,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
         const double k = g.stiffness_n_per_m * (1.0 + slope * (c - middle));
         const double spread = Z90 * std::hypot(se, g.stiffness_n_per_m * slope_se * (c - middle));
         r.stiffness[g.track][w] = k;
-        r.stiffness_low[g.track][w] = k - spread;
+        r.stiffness_low[g.track][w] = std::max(0.0, k - spread);
         r.stiffness_high[g.track][w] = k + spread;
       }
     }

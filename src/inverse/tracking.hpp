@@ -23,7 +23,7 @@ struct TrackingSettings {
   double window_s = 0.0;           //!< window length [s]; 0: the device's (track_windowing)
   double hop_s = 0.0;              //!< hop [s]; 0: half the window
   double max_wear_per_ms = 0.30;   //!< the prior's largest wear rate w_max [1/ms]: gates and held intervals
-  std::size_t max_missed = 2;      //!< G (excited: at least four window overlaps are allowed)
+  std::size_t max_missed = 2;      //!< G (excited: at least two window overlaps are allowed)
   double threshold_snr = 5.0;      //!< detection threshold (LineDetectorSettings::threshold_snr)
   //! Prominence over the local floor of the naive per-window FFT count (the `spectrum`
   //! peak search's, at half its default of 10: the windows are short).
