@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "spectral/assignment.hpp"
 
@@ -103,64 +104,75 @@ double median_frequency(const Track& t, std::size_t first, std::size_t last) {
 //! (track_steps.hpp).
 void merge_interleaved_tracks(std::vector<LiveTrack>& tracks, const LinkSettings& s) {
   const std::size_t reach = std::max<std::size_t>(1, s.step_overlap_windows);
-  for (bool merged = true; merged;) {
-    merged = false;
-    for (std::size_t a = 0; a < tracks.size() && !merged; ++a) {
-      Track& first = tracks[a].track;
-      if (first.sightings.empty()) continue;
-      for (std::size_t b = a + 1; b < tracks.size() && !merged; ++b) {
-        Track& second = tracks[b].track;
-        if (second.sightings.empty()) continue;
-        const std::size_t a0 = first.sightings.front().window, a1 = first.sightings.back().window;
-        const std::size_t b0 = second.sightings.front().window, b1 = second.sightings.back().window;
-        if (b0 > a1 + s.max_missed || a0 > b1 + s.max_missed) continue;
-        // Where they meet: the shared windows, or the ends that face each other.
-        const std::size_t lo = std::max(a0, b0), hi = std::min(a1, b1);
-        double fa = 0.0, fb = 0.0;
-        if (lo <= hi) {
-          fa = median_frequency(first, lo > reach ? lo - reach : 0, hi + reach);
-          fb = median_frequency(second, lo > reach ? lo - reach : 0, hi + reach);
-        } else if (a1 < b0) {
-          fa = median_frequency(first, a1 > reach ? a1 - reach : 0, a1);
-          fb = median_frequency(second, b0, b0 + reach);
-        } else {
-          fa = median_frequency(first, a0, a0 + reach);
-          fb = median_frequency(second, b1 > reach ? b1 - reach : 0, b1);
-        }
-        if (!(fa > 0.0 && fb > 0.0) || std::abs(fa - fb) > s.step_fraction * fa) continue;
-        // Two asperities are both heard in most of the windows they share (min_duty), past the
-        // windows that straddle where the second began; unless their lines lie within twice a
-        // window's peak error of each other: two random peaks of one line (a window of two
-        // coherence times often shows the line as two bumps), which the windows cannot tell
-        // from two asperities anyway.
-        const double window_se = std::max(first.sightings.back().line.frequency_se_hz, second.sightings.front().line.frequency_se_hz);
-        if (lo + reach <= hi && std::abs(fa - fb) > 2.0 * window_se) {
-          const auto duty = [&](const Track& t) {
-            const auto heard = std::count_if(t.sightings.begin(), t.sightings.end(),
-                                             [&](const TrackSighting& x) { return x.window >= lo + reach && x.window <= hi; });
-            return static_cast<double>(heard) / static_cast<double>(hi - lo - reach + 1);
-          };
-          if (duty(first) >= s.min_duty && duty(second) >= s.min_duty) continue;
-        }
-        std::vector<TrackSighting> all = first.sightings;
-        all.insert(all.end(), second.sightings.begin(), second.sightings.end());
-        std::stable_sort(all.begin(), all.end(), [](const TrackSighting& x, const TrackSighting& y) { return x.window < y.window; });
-        std::vector<TrackSighting> kept;
-        for (const TrackSighting& x : all)
-          if (!kept.empty() && kept.back().window == x.window) {
-            if (x.line.snr > kept.back().line.snr) kept.back() = x;
-          } else {
-            kept.push_back(x);
-          }
-        first.sightings = std::move(kept);
-        first.onset_level = 0.0;
-        for (std::size_t i = 0; i < std::min<std::size_t>(3, first.sightings.size()); ++i)
-          first.onset_level = std::max(first.onset_level, first.sightings[i].line.snr);
-        first.ended = first.sightings.back().window == a1 ? first.ended : second.ended;
-        second.sightings.clear();
-        merged = true;
+  // The relative distance of two tracks' lines where they meet when they may be one asperity
+  // (below), else nothing.
+  auto candidate = [&](const Track& first, const Track& second) -> std::optional<double> {
+    const std::size_t a0 = first.sightings.front().window, a1 = first.sightings.back().window;
+    const std::size_t b0 = second.sightings.front().window, b1 = second.sightings.back().window;
+    if (b0 > a1 + s.max_missed || a0 > b1 + s.max_missed) return std::nullopt;
+    // Where they meet: the shared windows, or the ends that face each other.
+    const std::size_t lo = std::max(a0, b0), hi = std::min(a1, b1);
+    double fa = 0.0, fb = 0.0;
+    if (lo <= hi) {
+      fa = median_frequency(first, lo > reach ? lo - reach : 0, hi + reach);
+      fb = median_frequency(second, lo > reach ? lo - reach : 0, hi + reach);
+    } else if (a1 < b0) {
+      fa = median_frequency(first, a1 > reach ? a1 - reach : 0, a1);
+      fb = median_frequency(second, b0, b0 + reach);
+    } else {
+      fa = median_frequency(first, a0, a0 + reach);
+      fb = median_frequency(second, b1 > reach ? b1 - reach : 0, b1);
+    }
+    if (!(fa > 0.0 && fb > 0.0) || std::abs(fa - fb) > s.step_fraction * fa) return std::nullopt;
+    // Two asperities are both heard in most of the windows they share (min_duty), past the
+    // windows that straddle where the second began; unless their lines lie within twice a
+    // window's peak error of each other: two random peaks of one line (a window of two
+    // coherence times often shows the line as two bumps), which the windows cannot tell
+    // from two asperities anyway.
+    const double window_se = std::max(first.sightings.back().line.frequency_se_hz, second.sightings.front().line.frequency_se_hz);
+    if (lo + reach <= hi && std::abs(fa - fb) > 2.0 * window_se) {
+      const auto duty = [&](const Track& t) {
+        const auto heard = std::count_if(t.sightings.begin(), t.sightings.end(),
+                                         [&](const TrackSighting& x) { return x.window >= lo + reach && x.window <= hi; });
+        return static_cast<double>(heard) / static_cast<double>(hi - lo - reach + 1);
+      };
+      if (duty(first) >= s.min_duty && duty(second) >= s.min_duty) return std::nullopt;
+    }
+    return std::abs(fa - fb) / fa;
+  };
+  // The closest pair first: a piece of a line belongs to the track nearest it, not to one
+  // that merely ended there (a released asperity's track must not take a neighbour's line).
+  for (;;) {
+    std::size_t best_a = tracks.size(), best_b = tracks.size();
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < tracks.size(); ++a) {
+      if (tracks[a].track.sightings.empty()) continue;
+      for (std::size_t b = a + 1; b < tracks.size(); ++b) {
+        if (tracks[b].track.sightings.empty()) continue;
+        const std::optional<double> d = candidate(tracks[a].track, tracks[b].track);
+        if (d && *d < best) best = *d, best_a = a, best_b = b;
       }
     }
+    if (best_a == tracks.size()) break;
+    Track& first = tracks[best_a].track;
+    Track& second = tracks[best_b].track;
+    const std::size_t a1 = first.sightings.back().window;
+    std::vector<TrackSighting> all = first.sightings;
+    all.insert(all.end(), second.sightings.begin(), second.sightings.end());
+    std::stable_sort(all.begin(), all.end(), [](const TrackSighting& x, const TrackSighting& y) { return x.window < y.window; });
+    std::vector<TrackSighting> kept;
+    for (const TrackSighting& x : all)
+      if (!kept.empty() && kept.back().window == x.window) {
+        if (x.line.snr > kept.back().line.snr) kept.back() = x;
+      } else {
+        kept.push_back(x);
+      }
+    first.sightings = std::move(kept);
+    first.onset_level = 0.0;
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, first.sightings.size()); ++i)
+      first.onset_level = std::max(first.onset_level, first.sightings[i].line.snr);
+    first.ended = first.sightings.back().window == a1 ? first.ended : second.ended;
+    second.sightings.clear();
   }
 }
 
@@ -304,16 +316,20 @@ void find_free_ringdown(Track& track, double gamma) {
   const std::vector<TrackSighting>& s = track.sightings;
   // The last sightings, where the ringing fades into the noise, have unreliable dampings: the
   // ring-down is judged on those still well above the noise (twice the weakest detectable).
+  // Released, nothing drives the asperity: its line is a free ringing, decaying at c/2m
+  // across the window. (The band's floor falling back to the white noise, 5-20 x lower than
+  // in contact, would tell too, but only for a lone asperity: others driven keep it up.)
+  auto free = [&](const WindowLine& l) { return l.damping_per_s >= 0.6 * gamma && l.damping_per_s <= 1.6 * gamma; };
   std::size_t end = s.size();
   while (end > 0 && s[end - 1].line.snr < 10.0) --end;
+  // Excited, the last windows of a fading line also hold its neighbours' leakage, which the
+  // halves' damping picks up: up to 3 trailing sightings that do not look free are passed over.
+  for (std::size_t skipped = 0; skipped < 3 && end > 0 && !free(s[end - 1].line); ++skipped) --end;
   std::size_t first = end;
   while (first > 0) {
     const WindowLine& l = s[first - 1].line;
-    // Released, nothing drives the asperity: its line is a free ringing and the band's floor
-    // falls back to the white noise (in contact it is 5-20 x that).
-    const bool free = l.damping_per_s >= 0.6 * gamma && l.damping_per_s <= 1.6 * gamma && l.floor_ratio < 2.0;
     const bool falls = first == end || l.snr >= 0.8 * s[first].line.snr;
-    if (!free || !falls) break;
+    if (!free(l) || !falls) break;
     --first;
   }
   if (end - first < MIN_RINGDOWN || first == 0) return;  // from its birth: an onset's ringing, not a release
