@@ -23,8 +23,8 @@ struct PieceFit {
 class StepSearch {
  public:
   StepSearch(const KnownDevice& device, const Track& track, const std::vector<TrackWindow>& windows, const RecordGrid& grid,
-             std::span<const double> v, double low_hz, double high_hz)
-      : track_(track), windows_(windows), grid_(grid), v_(v), low_hz_(low_hz), high_hz_(high_hz),
+             std::span<const double> v, double low_hz, double high_hz, std::span<const double> neighbours_hz)
+      : track_(track), windows_(windows), grid_(grid), v_(v), neighbours_hz_(neighbours_hz), low_hz_(low_hz), high_hz_(high_hz),
         half_width_hz_(device.damping_rate_per_s() / (2.0 * std::numbers::pi)) {}
 
   //! The median line of the sightings whose window centre lies in [start_s, end_s) [Hz] (0: none).
@@ -48,7 +48,7 @@ class StepSearch {
     const auto last = std::min(grid_.samples, static_cast<std::size_t>(std::max(0.0, std::ceil((end_s - grid_.start_s) / grid_.step_s))));
     if (last <= first + 16) return out;
     const LocalPeriodogram p = local_periodogram(v_.subspan(first, last - first), grid_.sample_rate_hz(), low_hz_, high_hz_);
-    const LorentzianFit lf = fit_lorentzian(p, guess, half_width_hz_);
+    const LorentzianFit lf = fit_lorentzian(p, guess, half_width_hz_, false, neighbours_hz_);
     out.valid = lf.valid;
     out.log_likelihood = lf.log_likelihood;
     out.centre_hz = lf.centre_hz;
@@ -156,7 +156,7 @@ class StepSearch {
       for (std::size_t j = 0; j < frequencies.size(); ++j)
         p.power.push_back(std::norm(running[m1 * frequencies.size() + j] - running[m0 * frequencies.size() + j]) / samples);
       const double start = start_s + static_cast<double>(at[m0]) / fs, end = start_s + static_cast<double>(at[m1]) / fs;
-      const LorentzianFit lf = fit_lorentzian(p, median_line(start, end), half_width_hz_);
+      const LorentzianFit lf = fit_lorentzian(p, median_line(start, end), half_width_hz_, false, neighbours_hz_);
       return std::pair<double, bool>{lf.log_likelihood * samples / static_cast<double>(n), lf.valid};
     };
     double best_l = -std::numeric_limits<double>::infinity();
@@ -193,6 +193,7 @@ class StepSearch {
   const std::vector<TrackWindow>& windows_;
   const RecordGrid& grid_;
   std::span<const double> v_;
+  std::span<const double> neighbours_hz_;
   double low_hz_, high_hz_, half_width_hz_;
 };
 
@@ -212,12 +213,8 @@ void find_driven_steps(const KnownDevice& device, Track& track, const std::vecto
   if (f.size() < 4) return;
   std::sort(f.begin(), f.end());
   const double f_low = f[f.size() / 10], f_high = f[f.size() - 1 - f.size() / 10];
-  double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
-  for (double other : neighbours_hz) {
-    if (other < f_low) below = std::min(below, std::max(3.0 * half_width_hz, 0.5 * (f_low - other)));
-    if (other > f_high) above = std::min(above, std::max(3.0 * half_width_hz, 0.5 * (other - f_high)));
-  }
-  const StepSearch search(device, track, windows, grid, v, f_low - below, f_high + above);
+  const double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
+  const StepSearch search(device, track, windows, grid, v, f_low - below, f_high + above, neighbours_hz);
   const double hop_s = windows[1].start_s - windows[0].start_s;
   std::vector<StepMark> steps;
   search.split(all.start_s, all.end_s, 4.0 / gamma, hop_s, z_threshold, steps);

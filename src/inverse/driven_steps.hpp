@@ -20,7 +20,7 @@ namespace stengmc {
 //! Sets `track.steps` (replacing any): each step's time is the best split, its interval the
 //! splits whose log-likelihood lies within 1.35 (half the chi-square(1) 90 % point) of the
 //! best, widened to at least +- one hop; `sighting` the first sighting after it.
-//! `neighbours_hz`: other tracks' lines heard at the same time (the band stops half-way to them).
+//! `neighbours_hz`: other tracks' lines heard at the same time (fitted with the line where in its band).
 void find_driven_steps(const KnownDevice& device, Track& track, const std::vector<TrackWindow>& windows, const RecordGrid& grid,
                        std::span<const double> voltage_v, std::span<const double> neighbours_hz, double z_threshold = 5.0);
 

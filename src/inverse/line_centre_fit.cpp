@@ -2,7 +2,6 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -13,40 +12,52 @@ namespace stengmc {
 
 namespace {
 
-using Parameters = std::array<double, 4>;  // centre [Hz], log half-width, log height, log noise
+//! x = (centre [Hz], log half-width, log height, log noise, then per neighbour line: centre
+//! [Hz], log height). Every line shares the half-width: the asperities share m and c.
+using Parameters = std::vector<double>;
+
+double spectrum_at(const Parameters& x, double f) {
+  const double b = std::exp(x[1]);
+  double s = std::exp(x[3]);
+  for (std::size_t i = 0; i < x.size(); i += (i == 0 ? 4 : 2)) {
+    const double centre = x[i], height = std::exp(x[i == 0 ? 2 : i + 1]);
+    const double u = (f - centre) / b;
+    s += height / (1.0 + u * u);
+  }
+  return s;
+}
 
 double negative_log_likelihood(const LocalPeriodogram& p, const Parameters& x) {
-  const double b = std::exp(x[1]), h = std::exp(x[2]), noise = std::exp(x[3]);
   double sum = 0.0;
   for (std::size_t j = 0; j < p.power.size(); ++j) {
-    const double u = (p.frequency_hz[j] - x[0]) / b;
-    const double s = h / (1.0 + u * u) + noise;
+    const double s = spectrum_at(x, p.frequency_hz[j]);
     sum += std::log(s) + p.power[j] / s;
   }
   return sum;
 }
 
-//! Nelder-Mead simplex (Nelder & Mead, Computer Journal 7 (1965)), standard coefficients:
-//! four parameters, a smooth likelihood; no derivatives needed.
+//! Nelder-Mead simplex (Nelder & Mead, Computer Journal 7 (1965)), standard coefficients; a
+//! zero step keeps that parameter where it starts (every vertex shares it).
 Parameters minimise(const LocalPeriodogram& p, Parameters start, const Parameters& step) {
-  std::array<Parameters, 5> simplex;
-  std::array<double, 5> value{};
-  for (std::size_t i = 0; i < 5; ++i) {
-    simplex[i] = start;
+  const std::size_t d = start.size();
+  std::vector<Parameters> simplex(d + 1, start);
+  std::vector<double> value(d + 1);
+  for (std::size_t i = 0; i <= d; ++i) {
     if (i > 0) simplex[i][i - 1] += step[i - 1];
     value[i] = negative_log_likelihood(p, simplex[i]);
   }
-  for (int iteration = 0; iteration < 2000; ++iteration) {
-    std::array<std::size_t, 5> order{0, 1, 2, 3, 4};
+  std::vector<std::size_t> order(d + 1);
+  for (int iteration = 0; iteration < 500 * static_cast<int>(d); ++iteration) {
+    for (std::size_t i = 0; i <= d; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return value[a] < value[b]; });
-    const std::size_t best = order[0], worst = order[4], second = order[3];
+    const std::size_t best = order[0], worst = order[d], second = order[d - 1];
     if (std::abs(value[worst] - value[best]) < 1e-10 * (1.0 + std::abs(value[best]))) break;
-    Parameters centroid{};
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t k = 0; k < 4; ++k) centroid[k] += simplex[order[i]][k] / 4.0;
+    Parameters centroid(d, 0.0);
+    for (std::size_t i = 0; i < d; ++i)
+      for (std::size_t k = 0; k < d; ++k) centroid[k] += simplex[order[i]][k] / static_cast<double>(d);
     auto along = [&](double t) {
-      Parameters q;
-      for (std::size_t k = 0; k < 4; ++k) q[k] = centroid[k] + t * (simplex[worst][k] - centroid[k]);
+      Parameters q(d);
+      for (std::size_t k = 0; k < d; ++k) q[k] = centroid[k] + t * (simplex[worst][k] - centroid[k]);
       return q;
     };
     const Parameters reflected = along(-1.0);
@@ -64,14 +75,25 @@ Parameters minimise(const LocalPeriodogram& p, Parameters start, const Parameter
       if (fc < std::min(fr, value[worst])) {
         simplex[worst] = contracted, value[worst] = fc;
       } else {
-        for (std::size_t i = 1; i < 5; ++i) {
-          for (std::size_t k = 0; k < 4; ++k) simplex[order[i]][k] = 0.5 * (simplex[order[i]][k] + simplex[best][k]);
+        for (std::size_t i = 1; i <= d; ++i) {
+          for (std::size_t k = 0; k < d; ++k) simplex[order[i]][k] = 0.5 * (simplex[order[i]][k] + simplex[best][k]);
           value[order[i]] = negative_log_likelihood(p, simplex[order[i]]);
         }
       }
     }
   }
   return simplex[static_cast<std::size_t>(std::min_element(value.begin(), value.end()) - value.begin())];
+}
+
+//! Mean of the ordinates within `radius_hz` of `f` (at least the nearest one).
+double local_level(const LocalPeriodogram& p, double f, double radius_hz) {
+  double sum = 0.0;
+  std::size_t count = 0, nearest = 0;
+  for (std::size_t j = 0; j < p.power.size(); ++j) {
+    if (std::abs(p.frequency_hz[j] - f) < std::abs(p.frequency_hz[nearest] - f)) nearest = j;
+    if (std::abs(p.frequency_hz[j] - f) <= radius_hz) sum += p.power[j], ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : p.power[nearest];
 }
 
 }  // namespace
@@ -111,7 +133,8 @@ LocalPeriodogram local_periodogram(std::span<const double> v, double fs, double 
   return p;
 }
 
-LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, double half_width_guess_hz, bool fit_width) {
+LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, double half_width_guess_hz, bool fit_width,
+                             std::span<const double> neighbours_hz) {
   LorentzianFit fit;
   const std::size_t m = p.power.size();
   if (m < 8 || !(half_width_guess_hz > 0.0)) return fit;
@@ -144,31 +167,48 @@ LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, 
   // 1 / (2 pi T) (to first order in 1 / (gamma T)). Fixed widths are widened by it.
   const double leakage_hz = fit_width ? 0.0 : 1.0 / (2.0 * std::numbers::pi * p.span_s);
   Parameters x{p.frequency_hz[peak], std::log(half_width_guess_hz + leakage_hz), std::log(height0), std::log(noise0)};
-  // A zero step keeps the half-width where it starts: every vertex shares it.
-  const double width_step = fit_width ? 1.0 : 0.0;
-  x = minimise(p, x, {half_width_guess_hz, 0.5 * width_step, 0.5, 0.5});
-  x = minimise(p, x, {0.2 * std::exp(x[1]), 0.1 * width_step, 0.1, 0.1});  // restarted: Nelder-Mead can stall
+  Parameters step{half_width_guess_hz, fit_width ? 0.5 : 0.0, 0.5, 0.5};
+  // Other tracks' lines inside the band (not the line itself: 3 half-widths clear of it) are
+  // fitted with it, so their tails are no slope under it that drags its centre.
   const double low = p.frequency_hz.front(), high = p.frequency_hz.back();
+  for (double other : neighbours_hz)
+    if (other > low && other < high && std::abs(other - x[0]) > 3.0 * half_width_guess_hz) {
+      x.push_back(other);
+      x.push_back(std::log(std::max(local_level(p, other, half_width_guess_hz) - noise0, noise0)));
+      step.push_back(half_width_guess_hz);
+      step.push_back(0.5);
+    }
+  x = minimise(p, x, step);
+  for (std::size_t i = 0; i < step.size(); ++i) step[i] *= (i == 0 || (i >= 4 && i % 2 == 0)) ? 0.2 * std::exp(x[1]) / half_width_guess_hz : 0.2;
+  x = minimise(p, x, step);  // restarted: Nelder-Mead can stall
   fit.centre_hz = x[0];
   fit.half_width_hz = std::exp(x[1]);
   fit.height = std::exp(x[2]);
   fit.noise = std::exp(x[3]);
   fit.log_likelihood = -negative_log_likelihood(p, x);
   // Whittle's information (the expected one: sum_j grad log S_j grad log S_j^T, Percival &
-  // Walden sec. 6.6), at the fit, over all four parameters; steadier than the observed
+  // Walden sec. 6.6), at the fit, over every free parameter; steadier than the observed
   // curvature, which the periodogram's exponential scatter shakes.
-  const Eigen::Index free = fit_width ? 4 : 3;
+  const std::size_t lines = 1 + (x.size() - 4) / 2;
+  const auto free = static_cast<Eigen::Index>((fit_width ? 4 : 3) + 2 * (lines - 1));
   Eigen::MatrixXd information = Eigen::MatrixXd::Zero(free, free);
   for (std::size_t j = 0; j < m; ++j) {
-    const double u = (p.frequency_hz[j] - fit.centre_hz) / fit.half_width_hz;
-    const double lorentz = 1.0 / (1.0 + u * u);
-    const double s = fit.height * lorentz + fit.noise;
-    Eigen::VectorXd g(free);
-    Eigen::Index i = 0;
-    g(i++) = fit.height * lorentz * lorentz * 2.0 * u / fit.half_width_hz / s;    // d log S / d centre
-    if (fit_width) g(i++) = fit.height * lorentz * lorentz * 2.0 * u * u / s;     // d log S / d log half-width
-    g(i++) = fit.height * lorentz / s;                                            // d log S / d log height
-    g(i) = fit.noise / s;                                                         // d log S / d log noise
+    const double f = p.frequency_hz[j];
+    const double s = spectrum_at(x, f);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(free);
+    double width_term = 0.0;
+    for (std::size_t l = 0; l < lines; ++l) {
+      const double centre = l == 0 ? x[0] : x[4 + 2 * (l - 1)];
+      const double height = std::exp(l == 0 ? x[2] : x[5 + 2 * (l - 1)]);
+      const double u = (f - centre) / fit.half_width_hz;
+      const double lorentz = 1.0 / (1.0 + u * u);
+      width_term += height * lorentz * lorentz * 2.0 * u * u;
+      const Eigen::Index c = l == 0 ? 0 : static_cast<Eigen::Index>((fit_width ? 4 : 3) + 2 * (l - 1));
+      g(c) = height * lorentz * lorentz * 2.0 * u / fit.half_width_hz / s;  // d log S / d centre
+      g(l == 0 ? (fit_width ? 2 : 1) : c + 1) = height * lorentz / s;      // d log S / d log height
+    }
+    if (fit_width) g(1) = width_term / s;                                  // d log S / d log half-width
+    g(fit_width ? 3 : 2) = fit.noise / s;                                  // d log S / d log noise
     information += g * g.transpose();
   }
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);

@@ -28,7 +28,8 @@ struct LocalPeriodogram {
 
 LocalPeriodogram local_periodogram(std::span<const double> v, double sample_rate_hz, double low_hz, double high_hz);
 
-//! S(f) = height / (1 + ((f - centre) / half_width)^2) + noise, fitted by Whittle's likelihood.
+//! S(f) = height / (1 + ((f - centre) / half_width)^2) + noise (+ neighbours' lines), fitted by
+//! Whittle's likelihood.
 struct LorentzianFit {
   double centre_hz = 0.0;
   //! Standard error of the centre: the inverse of Whittle's (expected) information over all
@@ -45,9 +46,12 @@ struct LorentzianFit {
 //! half-width `half_width_guess_hz` (the device's gamma / 2 pi). With `fit_width` false the
 //! half-width stays the device's: over 300 us a line of 8 kHz half-width spans ~5 independent
 //! ordinates, too few to fit its width (it scatters by a factor 0.5-3 between realisations,
-//! and the centre's error bar with it); the known device fixes it.
+//! and the centre's error bar with it); the known device fixes it. `neighbours_hz`: other
+//! asperities' lines, fitted with it where they lie in the band (their own centre and height,
+//! the same width), so that their tails do not drag its centre; the centre's error then counts
+//! their overlap.
 LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, double half_width_guess_hz,
-                             bool fit_width = false);
+                             bool fit_width = false, std::span<const double> neighbours_hz = {});
 
 //! The Cramer-Rao standard deviation of the centre of a Lorentzian line of half-width
 //! `half_width_hz` well above the noise observed for `span_s`: sqrt(gamma / T) / 2 pi with

@@ -41,13 +41,9 @@ std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const T
     std::sort(f.begin(), f.end());
     const double guess = f[f.size() / 2];
     // The band holds the windows' lines (10-90 %: a wearing line drifts across the segment)
-    // and 12 half-widths beyond, or half-way to a neighbour's line.
+    // and 12 half-widths beyond; other tracks' lines in it are fitted with this one.
     const double f_low = f[f.size() / 10], f_high = f[f.size() - 1 - f.size() / 10];
-    double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
-    for (double other : neighbours_hz) {
-      if (other < f_low) below = std::min(below, std::max(3.0 * half_width_hz, 0.5 * (f_low - other)));
-      if (other > f_high) above = std::min(above, std::max(3.0 * half_width_hz, 0.5 * (other - f_high)));
-    }
+    const double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
     const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((span.start_s - grid.start_s) / grid.step_s)));
     const auto last = std::min(grid.samples, static_cast<std::size_t>(std::floor((span.end_s - grid.start_s) / grid.step_s)) + 1);
     if (last <= first + 16) continue;
@@ -57,7 +53,7 @@ std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const T
     // then the span's middle, its error that of the wider line).
     const double window_se = track.sightings[span.first].line.frequency_se_hz;
     const bool drifting = f_high - f_low > 4.0 * window_se;
-    const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting);
+    const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting, neighbours_hz);
     if (!fit.valid) continue;
     // The model's adequacy: the windows' peaks about the fitted centre against their own
     // error (the line's wander in a window: track_peaks.hpp). A stationary line gives a mean

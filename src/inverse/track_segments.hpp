@@ -28,9 +28,8 @@ struct TrackSegment {
 //! Excited: each segment of `track` (between its onset, steps and release) fitted as one
 //! stationary Lorentzian line (line_centre_fit.hpp) over the samples from the first sighting's
 //! window centre to the last's (the windows that straddle a step, [low_s, high_s] of its mark,
-//! left out), in a band of 12 half-widths (c / 4 pi m) each side of the segment's median window
-//! frequency, narrowed to half-way to any other track's line heard at the same time
-//! (`neighbours_hz`). Its 90 % interval is the centre +- 1.645 x the Whittle curvature's error.
+//! left out), in a band of 12 half-widths (c / 4 pi m) beyond the segment's window lines, any
+//! other track's line heard at the same time (`neighbours_hz`) in it fitted with this one. Its 90 % interval is the centre +- 1.645 x the Whittle curvature's error.
 //! The error is scaled by the Birge ratio of the segment's windows about the centre (at least
 //! 1: a track that mixes lines or drifts is less sure than a stationary line's bound).
 //! A segment shorter than 4 tau = 8 m / c is not fitted (too few ordinates).

@@ -36,13 +36,9 @@ std::optional<TrackWear> fit_track_wear(const KnownDevice& device, const Track& 
     longest = std::max(longest, count);
     if (count == 0) continue;
     const double length = (g.end_s - g.start_s) / static_cast<double>(count);
-    // 12 half-widths each side, or half-way to a neighbour's line, but at least 8 ordinates
-    // (8 / length) each side: a piece of 4 tau has only ~8 within 3 half-widths.
-    const double least = std::max(3.0 * half_width_hz, 8.0 / length);
-    double reach = std::max(12.0 * half_width_hz, least);
-    for (double other : neighbours_hz)
-      if (std::abs(other - g.frequency_hz) > 1e-9 * g.frequency_hz)
-        reach = std::min(reach, std::max(least, 0.5 * std::abs(other - g.frequency_hz)));
+    // 12 half-widths each side, at least 8 ordinates (8 / length); other tracks' lines in it
+    // fitted with this one.
+    const double reach = std::max(12.0 * half_width_hz, 8.0 / length);
     for (std::size_t i = 0; i < count; ++i) {
       const double a = g.start_s + static_cast<double>(i) * length, b = a + length;
       // Started at the median of its windows' lines (wear moves the line along the segment).
@@ -60,7 +56,7 @@ std::optional<TrackWear> fit_track_wear(const KnownDevice& device, const Track& 
       const auto last = std::min(grid.samples, static_cast<std::size_t>(std::max(0.0, std::ceil((b - grid.start_s) / grid.step_s))));
       if (last <= first + 16) continue;
       const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), guess - reach, guess + reach);
-      const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz);
+      const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz, false, neighbours_hz);
       if (!fit.valid) continue;
       const double k = stiffness_at(device, fit.centre_hz);
       // k = m (omega^2 + gamma^2): dk/df = 2 m omega 2 pi ~ 2 k / f.
