@@ -156,7 +156,9 @@ class StepSearch {
       for (std::size_t j = 0; j < frequencies.size(); ++j)
         p.power.push_back(std::norm(running[m1 * frequencies.size() + j] - running[m0 * frequencies.size() + j]) / samples);
       const double start = start_s + static_cast<double>(at[m0]) / fs, end = start_s + static_cast<double>(at[m1]) / fs;
-      const LorentzianFit lf = fit_lorentzian(p, median_line(start, end), half_width_hz_, false, neighbours_hz_);
+      // (Locating only: without the neighbours, whose two parameters each would multiply the
+      // cost of the many candidate fits; the jump test below fits them.)
+      const LorentzianFit lf = fit_lorentzian(p, median_line(start, end), half_width_hz_);
       return std::pair<double, bool>{lf.log_likelihood * samples / static_cast<double>(n), lf.valid};
     };
     double best_l = -std::numeric_limits<double>::infinity();
@@ -213,8 +215,8 @@ void find_driven_steps(const KnownDevice& device, Track& track, const std::vecto
   if (f.size() < 4) return;
   std::sort(f.begin(), f.end());
   const double f_low = f[f.size() / 10], f_high = f[f.size() - 1 - f.size() / 10];
-  const double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
-  const StepSearch search(device, track, windows, grid, v, f_low - below, f_high + above, neighbours_hz);
+  const FitBand fb = fit_band(f_low, f_high, 12.0 * half_width_hz, neighbours_hz, 3.0 * half_width_hz);
+  const StepSearch search(device, track, windows, grid, v, fb.low_hz, fb.high_hz, fb.neighbours_hz);
   const double hop_s = windows[1].start_s - windows[0].start_s;
   std::vector<StepMark> steps;
   search.split(all.start_s, all.end_s, 4.0 / gamma, hop_s, z_threshold, steps);

@@ -218,6 +218,26 @@ LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, 
   return fit;
 }
 
+FitBand fit_band(double low_hz, double high_hz, double reach_hz, std::span<const double> neighbours_hz, double least_reach_hz) {
+  FitBand band{low_hz - reach_hz, high_hz + reach_hz, {}};
+  const double middle = 0.5 * (low_hz + high_hz);
+  std::vector<double> inside;
+  for (double f : neighbours_hz)
+    if (f > band.low_hz && f < band.high_hz && (f < low_hz || f > high_hz)) inside.push_back(f);
+  std::sort(inside.begin(), inside.end(), [&](double a, double b) { return std::abs(a - middle) < std::abs(b - middle); });
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    if (i < 2) {
+      band.neighbours_hz.push_back(inside[i]);
+      continue;
+    }
+    if (inside[i] < low_hz) band.low_hz = std::max(band.low_hz, std::min(low_hz - least_reach_hz, 0.5 * (low_hz + inside[i])));
+    else band.high_hz = std::min(band.high_hz, std::max(high_hz + least_reach_hz, 0.5 * (high_hz + inside[i])));
+  }
+  // A fitted neighbour the band no longer holds is dropped.
+  std::erase_if(band.neighbours_hz, [&](double f) { return f <= band.low_hz || f >= band.high_hz; });
+  return band;
+}
+
 double centre_standard_deviation_hz(double half_width_hz, double span_s) {
   return std::sqrt(half_width_hz / (2.0 * std::numbers::pi * span_s));
 }

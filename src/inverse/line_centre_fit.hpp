@@ -53,6 +53,16 @@ struct LorentzianFit {
 LorentzianFit fit_lorentzian(const LocalPeriodogram& p, double centre_guess_hz, double half_width_guess_hz,
                              bool fit_width = false, std::span<const double> neighbours_hz = {});
 
+//! The band a line is fitted in and the neighbours fitted with it: [low_hz, high_hz] widened by
+//! `reach_hz` each way; of the other lines in it, the two nearest the band's middle are fitted
+//! with the line, and the band stops half-way to any further one (each neighbour adds two
+//! parameters to the simplex: a crowded band of many would cost seconds per fit).
+struct FitBand {
+  double low_hz = 0.0, high_hz = 0.0;
+  std::vector<double> neighbours_hz;  //!< fitted with the line
+};
+FitBand fit_band(double low_hz, double high_hz, double reach_hz, std::span<const double> neighbours_hz, double least_reach_hz);
+
 //! The Cramer-Rao standard deviation of the centre of a Lorentzian line of half-width
 //! `half_width_hz` well above the noise observed for `span_s`: sqrt(gamma / T) / 2 pi with
 //! gamma = 2 pi half_width, i.e. sqrt(half_width / (2 pi T)) [Hz].

@@ -43,17 +43,17 @@ std::vector<TrackSegment> fit_driven_segments(const KnownDevice& device, const T
     // The band holds the windows' lines (10-90 %: a wearing line drifts across the segment)
     // and 12 half-widths beyond; other tracks' lines in it are fitted with this one.
     const double f_low = f[f.size() / 10], f_high = f[f.size() - 1 - f.size() / 10];
-    const double below = 12.0 * half_width_hz, above = 12.0 * half_width_hz;
+    const FitBand fb = fit_band(f_low, f_high, 12.0 * half_width_hz, neighbours_hz, 3.0 * half_width_hz);
     const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((span.start_s - grid.start_s) / grid.step_s)));
     const auto last = std::min(grid.samples, static_cast<std::size_t>(std::floor((span.end_s - grid.start_s) / grid.step_s)) + 1);
     if (last <= first + 16) continue;
-    const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), f_low - below, f_high + above);
+    const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), fb.low_hz, fb.high_hz);
     // A stationary line's window peaks spread over ~2.6 x their error (10-90 %); a line that
     // drifts (wear) further is smeared over the span: its width is fitted too (the centre is
     // then the span's middle, its error that of the wider line).
     const double window_se = track.sightings[span.first].line.frequency_se_hz;
     const bool drifting = f_high - f_low > 4.0 * window_se;
-    const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting, neighbours_hz);
+    const LorentzianFit fit = fit_lorentzian(p, guess, drifting ? 0.5 * (f_high - f_low) : half_width_hz, drifting, fb.neighbours_hz);
     if (!fit.valid) continue;
     // The model's adequacy: the windows' peaks about the fitted centre against their own
     // error (the line's wander in a window: track_peaks.hpp). A stationary line gives a mean

@@ -39,6 +39,7 @@ std::optional<TrackWear> fit_track_wear(const KnownDevice& device, const Track& 
     // 12 half-widths each side, at least 8 ordinates (8 / length); other tracks' lines in it
     // fitted with this one.
     const double reach = std::max(12.0 * half_width_hz, 8.0 / length);
+    const double least = std::max(3.0 * half_width_hz, 8.0 / length);
     for (std::size_t i = 0; i < count; ++i) {
       const double a = g.start_s + static_cast<double>(i) * length, b = a + length;
       // Started at the median of its windows' lines (wear moves the line along the segment).
@@ -55,8 +56,9 @@ std::optional<TrackWear> fit_track_wear(const KnownDevice& device, const Track& 
       const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((a - grid.start_s) / grid.step_s)));
       const auto last = std::min(grid.samples, static_cast<std::size_t>(std::max(0.0, std::ceil((b - grid.start_s) / grid.step_s))));
       if (last <= first + 16) continue;
-      const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), guess - reach, guess + reach);
-      const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz, false, neighbours_hz);
+      const FitBand fb = fit_band(guess, guess, reach, neighbours_hz, least);
+      const LocalPeriodogram p = local_periodogram(v.subspan(first, last - first), grid.sample_rate_hz(), fb.low_hz, fb.high_hz);
+      const LorentzianFit fit = fit_lorentzian(p, guess, half_width_hz, false, fb.neighbours_hz);
       if (!fit.valid) continue;
       const double k = stiffness_at(device, fit.centre_hz);
       // k = m (omega^2 + gamma^2): dk/df = 2 m omega 2 pi ~ 2 k / f.
