@@ -18,8 +18,8 @@ namespace stengmc {
 struct LinkSettings {
   //! Gate: |f_line - f_track| <= gate_z * sqrt(se_line^2 + se_track^2 + floor^2) + drift.
   double gate_z = 3.0;
-  //! Frequency error floor of the gate [Hz]: an excited line is a narrow-band random process
-  //! of half-width c/(4 pi m) (8 kHz with Table 1), which wanders that much between windows.
+  //! Frequency error floor of the gate [Hz]: 0 on the first pass; excited, the second pass
+  //! sets it from how much the first pass's tracks wander (tracking.cpp).
   double gate_floor_hz = 0.0;
   //! Largest relative frequency drift per window of wear: 0.5 w_max hop / 1 ms (f ~ sqrt(k)).
   double drift_per_window = 0.0;
