@@ -14,6 +14,7 @@
 #include "core/format.hpp"
 #include "inverse/known_device.hpp"
 #include "inverse/line_centre_fit.hpp"
+#include "inverse/regime_check.hpp"
 #include "inverse/track_lines.hpp"
 #include "inverse/tracking.hpp"
 #include "pipeline/run_study.hpp"
@@ -334,6 +335,26 @@ TEST(Tracking, ExcitedFiveAsperitiesEventsFoundAndStiffnessesWithinTheirErrors) 
     const double se = (g.stiffness_high - g.stiffness_low) / (2.0 * Z90);
     EXPECT_LE(std::abs(g.stiffness_n_per_m - truth), 3.0 * se) << "segment of track " << g.track << " against " << truth;
   }
+}
+
+// (g) The regime measured: the excited asperity of (a) tracked as if unexcited (the known
+// device's eps set to 0) has many clear ESPRIT lines whose envelope grows across the window (a
+// driven line's random envelope grows about as often as it falls) and looks excited; the
+// unexcited record of (a'), free ringings that only decay, does not.
+TEST(Tracking, AnExcitedRecordTrackedAsUnexcitedLooksExcited) {
+  const Simulated driven = simulate(device_study("600e-6", excited(), "stiffness_n_per_m = 60\nstiffness_steps = [[300e-6, 1.1]]"));
+  KnownDevice as_unexcited = driven.device;
+  as_unexcited.model.counterface.friction_modulation_rms = 0.0;
+  const TrackingResult r = track_record(as_unexcited, band(as_unexcited), driven.grid, driven.voltage, {});
+  std::size_t clear = 0;
+  const double driven_share = growing_line_share(r, &clear);
+  std::printf("  driven record tracked as unexcited: %.3f of %zu clear lines grow\n", driven_share, clear);
+  EXPECT_TRUE(looks_excited(r));
+  const Simulated ringing = simulate(device_study("300e-6", "", "stiffness_n_per_m = 60\nstiffness_steps = [[150e-6, 1.1]]"));
+  const TrackingResult q = track_record(ringing.device, band(ringing.device), ringing.grid, ringing.voltage, {});
+  const double ringing_share = growing_line_share(q, &clear);
+  std::printf("  unexcited record: %.3f of %zu clear lines grow\n", ringing_share, clear);
+  EXPECT_FALSE(looks_excited(q));
 }
 
 // (c) Coverage of the line intervals (Cramer-Rao, track_lines.hpp) on the closed-form case they
