@@ -17,6 +17,7 @@
 #include "ensemble/ensemble_runner.hpp"  // MAX_THREADS
 #include "inverse/calibration_run.hpp"
 #include "inverse/record_input.hpp"
+#include "inverse/regime_check.hpp"
 #include "inverse/track_lines.hpp"
 #include "inverse/tracking.hpp"
 #include "io/instrument_csv.hpp"
@@ -134,6 +135,10 @@ void run(const TrackOptions& options) {
   context.voltage_v = record.voltage_v;
   write_tracking_file(out, context, result);
   print_summary(result);
+  if (looks_excited(result))
+    std::printf("  NOTE: %.0f %% of the clear lines grow across their window (a free ringing only decays): the record "
+                "looks excited; does %s need [counterface] friction_modulation_rms > 0?\n",
+                100.0 * growing_line_share(result), options.known.c_str());
   std::printf("wrote %s\n", out.c_str());
   if (options.figures && render_figures(out, options.figure) != 0)
     throw Error("figure rendering failed (see the messages above); the HDF5 output is complete");

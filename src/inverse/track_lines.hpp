@@ -27,11 +27,11 @@ struct LineDetectorSettings {
   std::size_t max_lines = 16;     //!< most lines ESPRIT considers per window
   //! > 0: a line within this of a stronger one is taken as part of it and dropped [Hz]. An
   //! excited asperity's line is a random narrow-band process: within one window ESPRIT splits
-  //! it into a main line and weaker satellites ~0.6-0.8 / T away (seen on simulated records).
+  //! it into a main line and weaker satellites ~0.6-0.8 / T away (seen on simulated records);
+  //! the excited regime's periodogram peaks (track_peaks.hpp) use 2 / T, the Hann main lobe.
   double cluster_hz = 0.0;
-  //! > 0: lines weaker (in snr) than this fraction of the window's strongest are dropped
-  //! (excited regime: a driven asperity's stick episodes spread features ~25 dB down
-  //! across the whole band, seen on simulated records at eps = 0.01, v_b = 5 m/s).
+  //! > 0: lines weaker (in snr) than this fraction of the window's strongest are dropped. (The
+  //! tracker sets 0: excited, its peaks' Lorentzian-tail rule does this job, track_peaks.cpp.)
   double dynamic_range = 0.0;
 };
 

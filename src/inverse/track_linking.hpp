@@ -18,8 +18,8 @@ namespace stengmc {
 struct LinkSettings {
   //! Gate: |f_line - f_track| <= gate_z * sqrt(se_line^2 + se_track^2 + floor^2) + drift.
   double gate_z = 3.0;
-  //! Frequency error floor of the gate [Hz]: an excited line is a narrow-band random process
-  //! of half-width c/(4 pi m) (8 kHz with Table 1), which wanders that much between windows.
+  //! Frequency error floor of the gate [Hz]: 0 on the first pass; excited, the second pass
+  //! sets it from how much the first pass's tracks wander (tracking.cpp).
   double gate_floor_hz = 0.0;
   //! Largest relative frequency drift per window of wear: 0.5 w_max hop / 1 ms (f ~ sqrt(k)).
   double drift_per_window = 0.0;
@@ -45,6 +45,14 @@ struct LinkSettings {
   double min_duty = 0.5;
   //! c / 2m of the device: the damping of a free ringing [1/s].
   double free_damping_per_s = 0.0;
+  //! Excited (> 0): windows that share samples with one (lag). Tracks that take turns on one
+  //! line, or meet within step_fraction of each other (a step moves a driven line out of the
+  //! gate at once), are merged, their lines compared over this many windows where they meet.
+  std::size_t step_overlap_windows = 0;
+  //! > 0 (excited): the gate is centred on the median of the track's last this many lines
+  //! instead of its last line: a short window's peak of a random narrow-band line scatters by
+  //! ~1/T about the line's centre, and one stray sighting would drag a last-line gate with it.
+  std::size_t reference_sightings = 0;
 };
 
 struct TrackSighting {
@@ -69,8 +77,8 @@ struct Track {
 };
 
 //! Excited regime: a track whose last sightings (at least three) are all a free ringing
-//! (ESPRIT damping within [0.6, 1.6] x c/2m; in contact the random line's fitted damping
-//! scatters by ~1e5 /s either way) whose level falls is released: the release is the first
+//! (damping within [0.6, 1.6] x c/2m, from the periodogram peak's two window halves; in
+//! contact the random line's damping scatters by ~1e5 /s either way) whose level falls is released: the release is the first
 //! of them (the counterface no longer drives the asperity, so it rings down from where it
 //! was let go). Sets released and release_sighting.
 void find_free_ringdown(Track& track, double free_damping_per_s);

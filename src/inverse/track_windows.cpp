@@ -20,7 +20,7 @@ TrackWindowing track_windowing(const KnownDevice& device, const RecordGrid& grid
   // ~5 % apart at 2 MHz once ESPRIT's super-resolution is counted.
   const double half_tau = device.asperity.mass_kg / device.model.damping_n_s_per_m;
   const bool excited = device.model.counterface.friction_modulation_rms > 0.0;
-  if (window_s <= 0.0) window_s = excited ? 2.0 * half_tau : half_tau;
+  if (window_s <= 0.0) window_s = excited ? 4.0 * half_tau : half_tau;
   if (hop_s <= 0.0) hop_s = std::min(0.5 * half_tau, window_s);
   TrackWindowing w;
   w.length = static_cast<std::size_t>(std::llround(window_s / grid.step_s));

@@ -27,8 +27,9 @@ struct TrackWindow {
 //! The device's windows. Unexcited (lines are free ringings): length m/c = tau/2 (10 us with
 //! Table 1 values: a ringing decays by e^-1/2 across it, so a damped line is still one line),
 //! hop half of it. Excited (lines are random narrow-band processes of width c/(2 pi m)): length
-//! tau = 2m/c, the line's coherence time (20 us), so a window holds one line rather than one
-//! line and its satellites; hop tau/4, the same 5 us as unexcited. A value given in seconds
+//! 2 tau = 4m/c (40 us), two coherence times, so a window's periodogram peak is the line's and
+//! not one of its random bumps, and a fade (tens of us) seldom empties a whole window; hop
+//! tau/4, the same 5 us as unexcited. A value given in seconds
 //! (> 0) wins. @throws InputError when a window would be shorter than
 //! 64 samples or longer than the record, or the hop is 0 or longer than the window.
 TrackWindowing track_windowing(const KnownDevice& device, const RecordGrid& grid, double window_s = 0.0,

@@ -9,15 +9,19 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <set>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
+#include "inverse/driven_steps.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/noise_level.hpp"
 #include "inverse/track_lines.hpp"
+#include "inverse/track_peaks.hpp"
 #include "inverse/track_steps.hpp"
+#include "inverse/track_wear.hpp"
 
 namespace stengmc {
 
@@ -84,7 +88,8 @@ void set_interval(const KnownDevice& device, WindowLine& line, double inflation)
 }
 
 //! Windows and lines, in parallel (each window on its own; the naive counter owns an FFT plan).
-std::vector<WindowLines> detect_all(const LineDetector& detector, const RecordGrid& grid, std::span<const double> v,
+template <class Detector>
+std::vector<WindowLines> detect_all(const Detector& detector, const RecordGrid& grid, std::span<const double> v,
                                     const std::vector<TrackWindow>& windows, const TrackingSettings& settings,
                                     std::size_t length, std::vector<double>& naive, Progress* progress) {
   std::vector<WindowLines> lines(windows.size());
@@ -150,6 +155,7 @@ void add_segments(const KnownDevice& device, const Track& track, std::size_t t, 
       s.windows = used;
       s.frequency_hz = sum_wf / sum_w;
       const double se = std::sqrt(overlap / sum_w);
+      s.frequency_se_hz = se;
       s.stiffness_n_per_m = stiffness_at(device, s.frequency_hz);
       s.stiffness_low = stiffness_at(device, std::max(0.0, s.frequency_hz - Z90 * se));
       s.stiffness_high = stiffness_at(device, s.frequency_hz + Z90 * se);
@@ -158,6 +164,21 @@ void add_segments(const KnownDevice& device, const Track& track, std::size_t t, 
     start = end;
     if (start >= last) break;
   }
+}
+
+//! The median line of every other track heard at the same time as track `t` [Hz]: a segment's
+//! fit band stops half-way to them.
+std::vector<double> concurrent_lines(const std::vector<Track>& tracks, std::size_t t) {
+  std::vector<double> lines;
+  const std::size_t first = tracks[t].sightings.front().window, last = tracks[t].sightings.back().window;
+  for (std::size_t o = 0; o < tracks.size(); ++o) {
+    if (o == t || tracks[o].sightings.back().window < first || tracks[o].sightings.front().window > last) continue;
+    std::vector<double> f;
+    for (const TrackSighting& s : tracks[o].sightings) f.push_back(s.line.frequency_hz);
+    std::nth_element(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(f.size() / 2), f.end());
+    lines.push_back(f[f.size() / 2]);
+  }
+  return lines;
 }
 
 }  // namespace
@@ -212,27 +233,33 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   detection.sample_rate_hz = fs;
   detection.threshold_snr = settings.threshold_snr;
   const double window_length_s = static_cast<double>(r.windowing.length) * grid.step_s;
-  detection.cluster_hz = r.excited ? 1.0 / window_length_s : 0.0;
-  detection.dynamic_range = r.excited ? 0.1 : 0.0;
-  const LineDetector detector(device, detection);
+  detection.cluster_hz = r.excited ? 2.0 / window_length_s : 0.0;
+  detection.dynamic_range = 0.0;  // (excited: the peaks' tail rule replaces it, track_peaks.cpp)
+  // Unexcited, lines are free ringings: ESPRIT's damped sinusoids. Excited, they are random
+  // narrow-band processes: periodogram peaks (inverse/track_peaks.hpp).
   const std::vector<WindowLines> lines =
-      detect_all(detector, grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress);
+      r.excited ? detect_all(PeakLineDetector(device, detection), grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress)
+                : detect_all(LineDetector(device, detection), grid, v, r.windows, settings, r.windowing.length, r.naive_count, progress);
   for (const WindowLines& w : lines) r.window_mean_v.push_back(w.mean_v);
 
   const double hop_s = static_cast<double>(r.windowing.hop) * grid.step_s;
   const std::size_t lag = (r.windowing.length + r.windowing.hop - 1) / r.windowing.hop;
   LinkSettings link;
-  link.gate_floor_hz = r.excited ? device.model.damping_n_s_per_m / (4.0 * std::numbers::pi * device.asperity.mass_kg) : 0.0;
+  // (Excited, each window's peak error already holds the line's random wander: track_peaks.hpp.)
+  link.gate_floor_hz = 0.0;
   link.drift_per_window = 0.5 * settings.max_wear_per_ms * hop_s / 1e-3;
   // Excited, a driven line fades for tens of us at a time (its envelope is random): a track
-  // outlives four window overlaps unheard. Its release is timed by its ring-down, not by this.
-  link.max_missed = r.excited ? std::max(settings.max_missed, 4 * lag) : settings.max_missed;
+  // outlives two window lengths unheard (80 us: a fade of a 40 us window of the line is rare).
+  // Its release is timed by its ring-down, not by this.
+  link.max_missed = r.excited ? std::max(settings.max_missed, 2 * lag) : settings.max_missed;
+  link.reference_sightings = r.excited ? lag : 0;
   link.hold_silent = !r.excited;
   // A track must outlast a window: overlapping windows share samples, so one random feature
   // (the off-resonance response an excited asperity adds, which ESPRIT also fits; a noise
   // excursion) shows in `lag` consecutive windows. A real event rings for 20 us and more.
   link.min_sightings = lag + 2;
   link.free_damping_per_s = device.damping_rate_per_s();
+  link.step_overlap_windows = r.excited ? lag : 0;
   r.tracks = link_tracks(lines, link);
   if (r.excited) {
     // An excited line wanders between windows by more than its Cramer-Rao error (and, near
@@ -250,10 +277,33 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     r.error_inflation.push_back(inflation);
     for (TrackSighting& s : track.sightings) set_interval(device, s.line, inflation);
   }
-  for (Track& track : r.tracks) find_steps(track, r.windows, lag, r.excited);
+  // Tracks in parallel: each search and fit reads the record and its own track only.
+  std::vector<std::vector<double>> neighbours;
+  for (std::size_t t = 0; t < r.tracks.size(); ++t) neighbours.push_back(concurrent_lines(r.tracks, t));
+  const auto track_count = static_cast<std::int64_t>(r.tracks.size());
+#pragma omp parallel for num_threads(std::max(1, settings.threads)) schedule(dynamic, 1)
+  for (std::int64_t i = 0; i < track_count; ++i) {
+    const auto t = static_cast<std::size_t>(i);
+    if (r.excited) find_driven_steps(device, r.tracks[t], r.windows, grid, v, neighbours[t]);
+    else find_steps(r.tracks[t], r.windows, lag, r.excited);
+  }
   r.events = track_events(r.tracks, r.windows, r.excited);
   const double overlap = static_cast<double>(r.windowing.length) / static_cast<double>(r.windowing.hop);
-  for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
+  if (r.excited) {
+    std::vector<std::vector<TrackSegment>> fitted(r.tracks.size());
+    std::vector<std::optional<TrackWear>> wear(r.tracks.size());
+#pragma omp parallel for num_threads(std::max(1, settings.threads)) schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < track_count; ++i) {
+      const auto t = static_cast<std::size_t>(i);
+      fitted[t] = fit_driven_segments(device, r.tracks[t], t, r.windows, grid, v, neighbours[t]);
+      wear[t] = fit_track_wear(device, r.tracks[t], t, fitted[t], grid, v, neighbours[t], r.windows);
+    }
+    for (const std::vector<TrackSegment>& f : fitted) r.segments.insert(r.segments.end(), f.begin(), f.end());
+    for (const std::optional<TrackWear>& w : wear)
+      if (w) r.wear.push_back(*w);
+  } else {
+    for (std::size_t t = 0; t < r.tracks.size(); ++t) add_segments(device, r.tracks[t], t, r.windows, std::max(1.0, overlap), r.segments);
+  }
 
   // k(t), f(t) and n(t). A track's asperity is in contact from its first window to its release;
   // where its line is not heard, k is held at its last value and its interval widens by the
@@ -309,6 +359,26 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
       else uncertain[w].push_back(p);
     }
   }
+  // Excited, k(t) where a segment was fitted is the segment's line centre (with the track's
+  // fitted wear about the segment's middle): a window's peak wanders by ~1/T about it
+  // (track_peaks.hpp). Its variance: the segment's plus the slope's over the time from its middle.
+  if (r.excited)
+    for (const TrackSegment& g : r.segments) {
+      double slope = 0.0, slope_se = 0.0;
+      for (const TrackWear& w : r.wear)
+        if (w.track == g.track) slope = w.slope_per_s, slope_se = w.slope_se_per_s;
+      const double middle = 0.5 * (g.start_s + g.end_s);
+      const double se = (g.stiffness_high - g.stiffness_low) / (2.0 * Z90);
+      for (std::size_t w = 0; w < nw; ++w) {
+        const double c = r.windows[w].centre_s;
+        if (c < g.start_s || c > g.end_s || std::isnan(r.stiffness[g.track][w])) continue;
+        const double k = g.stiffness_n_per_m * (1.0 + slope * (c - middle));
+        const double spread = Z90 * std::hypot(se, g.stiffness_n_per_m * slope_se * (c - middle));
+        r.stiffness[g.track][w] = k;
+        r.stiffness_low[g.track][w] = std::max(0.0, k - spread);
+        r.stiffness_high[g.track][w] = k + spread;
+      }
+    }
   // The count: tracks in contact (a track whose best line is near the threshold counted when
   // it is more likely real than not). Its interval: the Poisson-binomial 5-95 % range of the
   // uncertain tracks and of the lines heard in no track near the threshold (p = Phi(z - z_th):

@@ -11,6 +11,8 @@
 #include "inverse/record_grid.hpp"
 #include "inverse/track_events.hpp"
 #include "inverse/track_linking.hpp"
+#include "inverse/track_segments.hpp"
+#include "inverse/track_wear.hpp"
 #include "inverse/track_windows.hpp"
 
 namespace stengmc {
@@ -21,24 +23,12 @@ struct TrackingSettings {
   double window_s = 0.0;           //!< window length [s]; 0: the device's (track_windowing)
   double hop_s = 0.0;              //!< hop [s]; 0: half the window
   double max_wear_per_ms = 0.30;   //!< the prior's largest wear rate w_max [1/ms]: gates and held intervals
-  std::size_t max_missed = 2;      //!< G (excited: at least four window overlaps are allowed)
+  std::size_t max_missed = 2;      //!< G (excited: at least two window overlaps are allowed)
   double threshold_snr = 5.0;      //!< detection threshold (LineDetectorSettings::threshold_snr)
   //! Prominence over the local floor of the naive per-window FFT count (the `spectrum`
   //! peak search's, at half its default of 10: the windows are short).
   double naive_threshold = 5.0;
   int threads = 1;
-};
-
-//! A track's stiffness between two of its events: the inverse-variance mean over its windows
-//! (the windows beside a step left out: they straddle it).
-struct TrackSegment {
-  std::size_t track = 0;
-  double start_s = 0.0, end_s = 0.0;  //!< first and last window centre it covers [s]
-  std::size_t windows = 0;            //!< windows averaged
-  double frequency_hz = 0.0;
-  double stiffness_n_per_m = 0.0;
-  double stiffness_low = 0.0;         //!< 90 % interval [N/m]
-  double stiffness_high = 0.0;
 };
 
 struct TrackingResult {
@@ -58,6 +48,7 @@ struct TrackingResult {
   std::vector<Track> tracks;
   std::vector<TrackEvent> events;
   std::vector<TrackSegment> segments;
+  std::vector<TrackWear> wear;              //!< excited: each track's fitted wear (tracks with enough pieces)
   double seconds = 0.0;                     //!< computing time
 };
 

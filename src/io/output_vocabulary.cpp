@@ -57,7 +57,7 @@ constexpr std::string_view PARAMETER_UNITS = "each column in the unit of its par
 //                      it after a lone swept key, io/ensemble_coordinates); parameter:
 //                      swept or drawn parameters (coordinate: their names)
 //   record             inverse: records (measured signals) or calibration records
-//   track, event, segment  tracking: tracks, their events and stiffness segments
+//   track, event, segment, wear  tracking: tracks, their events, stiffness segments and wear fits
 constexpr std::array TERMS{
     // run file (and `circuit` file): the realisation
     Term{"/time", "s", "time", "time"},
@@ -283,9 +283,14 @@ constexpr std::array TERMS{
     Term{"/tracking/segments/stiffness_low", "N/m", "lower end of its 90 % interval", "segment"},
     Term{"/tracking/segments/stiffness_high", "N/m", "upper end of its 90 % interval", "segment"},
     Term{"/tracking/segments/frequency_hz", "Hz", "mean frequency of the segment", "segment"},
+    Term{"/tracking/wear/track", "1", "index of the track whose wear was fitted", "wear"},
+    Term{"/tracking/wear/wear_rate_per_ms", "1/ms", "wear rate: stiffness lost per ms over the stiffness at the track's start", "wear"},
+    Term{"/tracking/wear/wear_rate_low", "1/ms", "lower end of the wear rate's 90 % interval", "wear"},
+    Term{"/tracking/wear/wear_rate_high", "1/ms", "upper end of the wear rate's 90 % interval", "wear"},
+    Term{"/tracking/wear/pieces", "1", "pieces of 4 tau whose line centres the slope was fitted to", "wear"},
     Term{"/tracking/lines/window", "1", "index of the line's window", "line"},
-    Term{"/tracking/lines/frequency_hz", "Hz", "ESPRIT line frequency", "line"},
-    Term{"/tracking/lines/frequency_se_hz", "Hz", "Cramer-Rao standard error of the frequency", "line"},
+    Term{"/tracking/lines/frequency_hz", "Hz", "line frequency (ESPRIT; excited: periodogram peak)", "line"},
+    Term{"/tracking/lines/frequency_se_hz", "Hz", "standard error of the frequency (Cramer-Rao; excited: the peak's wander)", "line"},
     Term{"/tracking/lines/amplitude_v", "V", "line amplitude at the window's first sample", "line"},
     Term{"/tracking/lines/snr", "1", "matched-filter amplitude signal-to-noise ratio", "line"},
     Term{"/tracking/lines/detected", "1", "1 when above the detection threshold (else a candidate)", "line"},

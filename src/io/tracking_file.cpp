@@ -92,6 +92,21 @@ void write_tracking_file(const std::string& path, const TrackingFileContext& con
   f.write("/tracking/segments/stiffness_high", s_high);
   f.write("/tracking/segments/frequency_hz", s_f);
 
+  std::vector<std::int64_t> wear_track, wear_pieces;
+  std::vector<double> w_rate, w_low, w_high;
+  for (const TrackWear& w : r.wear) {
+    wear_track.push_back(static_cast<std::int64_t>(w.track));
+    wear_pieces.push_back(static_cast<std::int64_t>(w.pieces));
+    w_rate.push_back(w.rate_per_ms);
+    w_low.push_back(w.rate_low);
+    w_high.push_back(w.rate_high);
+  }
+  f.write("/tracking/wear/track", wear_track);
+  f.write("/tracking/wear/wear_rate_per_ms", w_rate);
+  f.write("/tracking/wear/wear_rate_low", w_low);
+  f.write("/tracking/wear/wear_rate_high", w_high);
+  f.write("/tracking/wear/pieces", wear_pieces);
+
   std::vector<std::int64_t> line_window, detected;
   std::vector<double> lf, lse, la, lz;
   for (std::size_t w = 0; w < r.window_lines.size(); ++w)

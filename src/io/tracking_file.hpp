@@ -12,6 +12,8 @@
 //!   /tracking/events/ kind, time_s, time_low_s, time_high_s, track (E)
 //!   /tracking/segments/ track, start_s, end_s, windows, stiffness_n_per_m, stiffness_low,
 //!                     stiffness_high, frequency_hz (S)
+//!   /tracking/wear/   track, wear_rate_per_ms, wear_rate_low, wear_rate_high, pieces (excited:
+//!                     the tracks whose wear was fitted)
 //!   /tracking/lines/  window, frequency_hz, frequency_se_hz, amplitude_v, snr, detected (L)
 //!   /tracking/record/ time, voltage: the record tracked (the figure's spectrogram)
 #include <span>

@@ -3,6 +3,7 @@
 // damped lines, against the truth they were made from.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,8 @@
 
 #include "core/format.hpp"
 #include "inverse/known_device.hpp"
+#include "inverse/line_centre_fit.hpp"
+#include "inverse/regime_check.hpp"
 #include "inverse/track_lines.hpp"
 #include "inverse/tracking.hpp"
 #include "pipeline/run_study.hpp"
@@ -22,10 +25,10 @@ namespace {
 
 //! One asperity of Table 1-2 values on a belt at 5 m/s, every device key written out (as a
 //! `--known` study must), with `asperity` and `extra` spliced in.
-std::string device_study(const std::string& duration, const std::string& counterface, const std::string& asperity) {
-  return "duration_s = " + duration + R"(
+std::string device_study(const std::string& duration, const std::string& counterface, const std::string& asperity,
+                         int seed = 11) {
+  return "duration_s = " + duration + "\nseed = " + std::to_string(seed) + R"(
 sample_rate_hz = 100e6
-seed = 11
 [model]
 kind = "model2"
 belt_velocity_m_per_s = 5
@@ -141,16 +144,53 @@ void expect_step_found(const std::string& duration, const std::string& counterfa
   EXPECT_NEAR(k[1] / 66.0, 1.0, 0.005);
 }
 
+//! The closed-form standard deviation of a driven line's stiffness fitted over `span_s`
+//! (line_centre_fit.hpp): 2 sqrt(gamma / T) / omega, relative [-].
+double stiffness_bound(const KnownDevice& d, double stiffness, double span_s) {
+  const double half_width_hz = d.damping_rate_per_s() / (2.0 * std::numbers::pi);
+  return 2.0 * centre_standard_deviation_hz(half_width_hz, span_s) / frequency_at(d, stiffness);
+}
+
 // (a) An excited asperity (eps = 0.01, lambda = 0.5 um, v_b = 5 m/s, 25 dB) whose k steps from 60
 // to 66 N/m at 300 us: the issue's targets, the step within +-20 us and both stiffnesses within
-// 0.5 %. NOT MET TODAY (docs/tracking.md, limits): at eps = 0.01 and v_b = 5 m/s the driven
-// asperity's velocity reaches ~2 m/s rms, close to sticking; its line wanders by ~2.5 % in k
-// between 5 us windows and fades for tens of us at a time, so its track breaks (on this
-// record: one track from 10 to 187 us, k = 59.98 N/m [59.59, 60.37] (-0.04 %), then nothing
-// kept: the pieces after it are heard in fewer than half their windows). Kept, disabled, as
-// the target (run with --gtest_also_run_disabled_tests).
+// 0.5 %. KEPT DISABLED: THE TARGET IS A COIN-FLIP FOR ONE REALISATION, NOT A TEST. A driven line
+// is a random narrow-band process of half-width gamma = c/2m; its centre over a segment of
+// T = 275 us (the 295 us before the step less the first window's half) has the Cramer-Rao
+// standard deviation sqrt(gamma / T) = 0.166 % of f, 0.33 % of k (the fits reach it: test (d)
+// and TrackingLineCentreFit). 0.5 % is 1.5 sigma: each stiffness meets it with probability
+// 0.87, both with 0.75. On this record: the step at 300.0 us [295, 305], k = 59.86 [59.48, 60.24]
+// (-0.23 %) and 65.53 [65.13, 65.93] (-0.71 %, 1.9 sigma). Test (a'') checks the same record
+// against the bound instead. Run with --gtest_also_run_disabled_tests.
 TEST(Tracking, DISABLED_ExcitedStepFoundAndBothStiffnessesWithinHalfAPercent) {
   expect_step_found("600e-6", excited(), 300e-6);
+}
+
+// (a'') The record of (a): one step on the asperity's track within +-20 us of 300 us (the
+// issue's timing target) and each segment's stiffness within 3 sigma of the truth, sigma the
+// closed-form bound for the segment's span (stiffness_bound; 0.33 % for 275 us): the estimator
+// is unbiased and reaches the bound, or this fails (with probability 0.005 by chance).
+TEST(Tracking, ExcitedStepFoundAndStiffnessesWithinThreeSigmaOfTheirBound) {
+  const Simulated s = simulate(device_study("600e-6", excited(), "stiffness_n_per_m = 60\nstiffness_steps = [[300e-6, 1.1]]"));
+  const TrackingResult r = track_record(s.device, band(s.device), s.grid, s.voltage, {});
+  print(r);
+  ASSERT_FALSE(r.tracks.empty());
+  const std::size_t t = main_track(r);
+  std::size_t steps = 0;
+  for (const TrackEvent& e : r.events)
+    if (e.kind == TrackEventKind::step && e.track == t) {
+      ++steps;
+      EXPECT_NEAR(e.time_s, 300e-6, 20e-6);
+    }
+  EXPECT_EQ(steps, 1u);
+  std::vector<TrackSegment> segments;
+  for (const TrackSegment& g : r.segments)
+    if (g.track == t) segments.push_back(g);
+  ASSERT_EQ(segments.size(), 2u);
+  const double truth[] = {60.0, 66.0};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double sigma = stiffness_bound(s.device, truth[i], segments[i].end_s - segments[i].start_s);
+    EXPECT_LE(std::abs(segments[i].stiffness_n_per_m / truth[i] - 1.0), 3.0 * sigma) << i;
+  }
 }
 
 // (a') The same step on an unexcited asperity (Table 1: eps = 0), at 150 us while its onset's
@@ -182,6 +222,139 @@ TEST(Tracking, ReleasedAsperityTrackEndsAtItsRelease) {
     if (r.windows[w].start_s > 150e-6) {
       EXPECT_TRUE(std::isnan(r.stiffness[t][w])) << r.windows[w].centre_s;
     }
+}
+
+// (d) The excited stiffness intervals over 12 realisations (counterface and noise seeds) of one
+// asperity at k = 60 N/m (eps = 0.01, 25 dB, 300 us, no event): the main track's segment's
+// 90 % interval against the truth. Each error bar within 0.8-1.5 x the closed-form bound
+// sqrt(gamma / T) for its span (the fit's information can only fall short of the bound's,
+// through the noise and the finite band); the standardised errors' mean square within the
+// chi-square(12)/12 central 99 % (0.26-2.18) and at least 9 of 12 intervals covering
+// (a binomial(12, 0.9) gives fewer with probability 0.026), and likewise the wear rate's
+// interval holding 0 (none simulated) in at least 9 of 12. A tracker whose intervals
+// ignore the line's randomness (the windows' ESPRIT bounds: 3-10x too narrow) fails.
+TEST(Tracking, ExcitedStiffnessIntervalsMatchTheBoundOverRealisations) {
+  std::size_t covered = 0, found = 0, wear_fits = 0, wear_covered = 0;
+  double sum_z2 = 0.0;
+  for (int seed = 0; seed < 12; ++seed) {
+    const Simulated s = simulate(device_study("300e-6", excited(), "stiffness_n_per_m = 60", 100 + seed), 25.0,
+                                 static_cast<unsigned>(200 + seed));
+    const TrackingResult r = track_record(s.device, band(s.device), s.grid, s.voltage, {});
+    if (r.tracks.empty()) continue;
+    const std::size_t t = main_track(r);
+    const TrackSegment* longest = nullptr;
+    for (const TrackSegment& g : r.segments)
+      if (g.track == t && (!longest || g.end_s - g.start_s > longest->end_s - longest->start_s)) longest = &g;
+    if (!longest) continue;
+    ++found;
+    const double se = (longest->stiffness_high - longest->stiffness_low) / (2.0 * Z90 * 60.0);
+    const double bound = stiffness_bound(s.device, 60.0, longest->end_s - longest->start_s);
+    const double z = (longest->stiffness_n_per_m / 60.0 - 1.0) / se;
+    std::printf("  seed %d: k = %.3f [%.3f, %.3f] over %.0f us, se / bound %.2f, z %.2f\n", seed, longest->stiffness_n_per_m,
+                longest->stiffness_low, longest->stiffness_high, (longest->end_s - longest->start_s) * 1e6, se / bound, z);
+    EXPECT_GE(se / bound, 0.8);
+    EXPECT_LE(se / bound, 1.5);
+    sum_z2 += z * z;
+    if (60.0 >= longest->stiffness_low && 60.0 <= longest->stiffness_high) ++covered;
+    for (const TrackWear& w : r.wear)
+      if (w.track == t) {
+        ++wear_fits;
+        if (w.rate_low <= 0.0 && w.rate_high >= 0.0) ++wear_covered;
+      }
+  }
+  ASSERT_EQ(found, 12u);
+  std::printf("  %zu of 12 cover, mean z^2 %.2f\n", covered, sum_z2 / 12.0);
+  EXPECT_GE(covered, 9u);
+  // No wear simulated: the wear rates' 90 % intervals hold 0 as often (at least 9 of 12).
+  std::printf("  wear fitted on %zu, its interval holds 0 on %zu\n", wear_fits, wear_covered);
+  EXPECT_EQ(wear_fits, 12u);
+  EXPECT_GE(wear_covered, 9u);
+  EXPECT_GE(sum_z2 / 12.0, 0.26);
+  EXPECT_LE(sum_z2 / 12.0, 2.18);
+}
+
+// (e) Wear measured (excited regime): one asperity of k0 = 100 N/m from t = 0 wearing
+// 30 % per ms (the prior's largest; docs/model.md §1.4), 600 us, eps = 0.01, 25 dB. Its track's
+// fitted wear rate within 3 sigma of 0.3 /ms, sigma from its 90 % interval, and that sigma at
+// most 0.05 /ms: with 7 pieces of 80 us, each centre known to ~0.5 % in k (the closed-form
+// bound), the slope's standard error is ~0.011 /ms.
+TEST(Tracking, ExcitedWearRateMeasuredWithinItsInterval) {
+  const Simulated s = simulate(device_study("600e-6", excited(), "stiffness_n_per_m = 100\nwear_rate_per_ms = 0.3"));
+  const TrackingResult r = track_record(s.device, band(s.device), s.grid, s.voltage, {});
+  print(r);
+  ASSERT_FALSE(r.tracks.empty());
+  const std::size_t t = main_track(r);
+  const TrackWear* wear = nullptr;
+  for (const TrackWear& w : r.wear)
+    if (w.track == t) wear = &w;
+  ASSERT_NE(wear, nullptr);
+  const double sigma = (wear->rate_high - wear->rate_low) / (2.0 * Z90);
+  std::printf("  wear %.4f /ms [%.4f, %.4f] from %zu pieces\n", wear->rate_per_ms, wear->rate_low, wear->rate_high, wear->pieces);
+  EXPECT_LE(std::abs(wear->rate_per_ms - 0.3), 3.0 * sigma);
+  EXPECT_LE(sigma, 0.05);
+  EXPECT_EQ(std::count_if(r.events.begin(), r.events.end(), [](const TrackEvent& e) { return e.kind == TrackEventKind::step; }), 0);
+}
+
+// (f) Five excited asperities (eps = 0.01, 25 dB, 800 us): 50, 80 -> 88 N/m at 400 us, 110,
+// 65 from 200 us and 95 released at 500 us (lines 65-100 kHz apart, each segment's band holding
+// its neighbours' tails). The onset, the step and the release each found once within +-20 us
+// (the issue's timing target), no other event after the first window, and each segment's
+// stiffness within 3 of its own standard errors of the truth of its time (the neighbours'
+// lines are fitted with it: with the band only narrowed to half-way to them, their tails
+// dragged the 88 N/m segment 1.1 % up, 4 sigma).
+TEST(Tracking, ExcitedFiveAsperitiesEventsFoundAndStiffnessesWithinTheirErrors) {
+  const Simulated s = simulate(device_study("800e-6", excited(),
+                                            "stiffness_n_per_m = 50\n[[surface.asperity]]\nstiffness_n_per_m = 80\n"
+                                            "stiffness_steps = [[400e-6, 1.1]]\n[[surface.asperity]]\nstiffness_n_per_m = 110\n"
+                                            "[[surface.asperity]]\nstiffness_n_per_m = 65\nonset_s = 200e-6\n"
+                                            "[[surface.asperity]]\nstiffness_n_per_m = 95\nrelease_s = 500e-6"));
+  const TrackingResult r = track_record(s.device, band(s.device), s.grid, s.voltage, {});
+  print(r);
+  std::size_t onsets = 0, steps = 0, releases = 0, others = 0;
+  for (const TrackEvent& e : r.events) {
+    if (e.kind == TrackEventKind::onset && e.time_low_s <= r.windows.front().start_s) continue;  // heard from the start
+    if (e.kind == TrackEventKind::onset && std::abs(e.time_s - 200e-6) <= 20e-6) ++onsets;
+    else if (e.kind == TrackEventKind::step && std::abs(e.time_s - 400e-6) <= 20e-6) ++steps;
+    else if (e.kind == TrackEventKind::release && std::abs(e.time_s - 500e-6) <= 20e-6) ++releases;
+    else ++others;
+  }
+  EXPECT_EQ(onsets, 1u);
+  EXPECT_EQ(steps, 1u);
+  EXPECT_EQ(releases, 1u);
+  EXPECT_EQ(others, 0u);
+  // Each segment against the nearest truth of its time (the 80 N/m asperity is 88 after 400 us).
+  for (const TrackSegment& g : r.segments) {
+    const double middle = 0.5 * (g.start_s + g.end_s);
+    std::vector<double> truths{50.0, 110.0};
+    truths.push_back(middle < 400e-6 ? 80.0 : 88.0);
+    if (g.end_s > 200e-6) truths.push_back(65.0);
+    if (g.start_s < 500e-6) truths.push_back(95.0);
+    double truth = truths.front();
+    for (double k : truths)
+      if (std::abs(k - g.stiffness_n_per_m) < std::abs(truth - g.stiffness_n_per_m)) truth = k;
+    const double se = (g.stiffness_high - g.stiffness_low) / (2.0 * Z90);
+    EXPECT_LE(std::abs(g.stiffness_n_per_m - truth), 3.0 * se) << "segment of track " << g.track << " against " << truth;
+  }
+}
+
+// (g) The regime measured: the excited asperity of (a) tracked as if unexcited (the known
+// device's eps set to 0) has many clear ESPRIT lines whose envelope grows across the window (a
+// driven line's random envelope grows about as often as it falls) and looks excited; the
+// unexcited record of (a'), free ringings that only decay, does not.
+TEST(Tracking, AnExcitedRecordTrackedAsUnexcitedLooksExcited) {
+  const Simulated driven = simulate(device_study("600e-6", excited(), "stiffness_n_per_m = 60\nstiffness_steps = [[300e-6, 1.1]]"));
+  KnownDevice as_unexcited = driven.device;
+  as_unexcited.model.counterface.friction_modulation_rms = 0.0;
+  const TrackingResult r = track_record(as_unexcited, band(as_unexcited), driven.grid, driven.voltage, {});
+  std::size_t clear = 0;
+  const double driven_share = growing_line_share(r, &clear);
+  std::printf("  driven record tracked as unexcited: %.3f of %zu clear lines grow\n", driven_share, clear);
+  EXPECT_TRUE(looks_excited(r));
+  const Simulated ringing = simulate(device_study("300e-6", "", "stiffness_n_per_m = 60\nstiffness_steps = [[150e-6, 1.1]]"));
+  const TrackingResult q = track_record(ringing.device, band(ringing.device), ringing.grid, ringing.voltage, {});
+  const double ringing_share = growing_line_share(q, &clear);
+  std::printf("  unexcited record: %.3f of %zu clear lines grow\n", ringing_share, clear);
+  EXPECT_FALSE(looks_excited(q));
 }
 
 // (c) Coverage of the line intervals (Cramer-Rao, track_lines.hpp) on the closed-form case they
