@@ -59,12 +59,19 @@ class LineProposals {
   struct Fft;
   struct Residual;
   struct Rough;
+  //! The tail where it starts, from an atom's shape weights: the same for every breakaway
+  //! time of one shape, so worked out once per shape, not once per rough candidate.
+  struct TailStart {
+    std::complex<double> phase;  //!< e^{i phi}
+    double amplitude = 0.0;      //!< the tail's velocity amplitude where it starts [v_b]
+  };
+  static TailStart tail_start(const ShapeWeights& w);
   //! Prefix sums and the sliding transform of a residual.
   void load_residual(Residual& q) const;
   //! The sliding matched filter of the loaded residual at tail frequency omega [rad/s].
   void matched_filter(double omega, std::vector<std::complex<double>>& matched) const;
-  //! The rough score of `atom` (carried phase pi, shape w: the tail's phase and amplitude) breaking away at sample `breakaway`.
-  void add_rough(const AtomParameters& atom, double pi, const ShapeWeights& w, std::size_t breakaway, const Residual& q,
+  //! The rough score of `atom` (carried phase pi, its tail starting as `tail`) breaking away at sample `breakaway`.
+  void add_rough(const AtomParameters& atom, double pi, const TailStart& tail, std::size_t breakaway, const Residual& q,
                  std::span<const std::complex<double>> matched, std::vector<Rough>& rough) const;
   //! `atom` at its onset, or at every onset the layout allows.
   void add_breakaways(AtomParameters atom, const Residual& q, std::span<const std::complex<double>> matched,
