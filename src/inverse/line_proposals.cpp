@@ -36,6 +36,9 @@ constexpr std::size_t LOAD_GRID = 12;
 // Two placements of one atom whose loads differ by less than this in ln N (and onsets by less
 // than half a period) are the same to the refit that follows.
 constexpr double PLACEMENT_LOG_LOAD = 0.1;
+// Kernel transforms kept (LineProposals::kernel_transform): one per atom of the largest order
+// the pair re-seat sees (16), 0.3 MB each at 10^4 samples.
+constexpr std::size_t KERNELS_KEPT = 24;
 
 }  // namespace
 
@@ -124,12 +127,17 @@ LineProposals::LineProposals(const RecordModel& model, const FitLayout& layout, 
 LineProposals::~LineProposals() = default;
 
 LineCandidate LineProposals::score(const AtomParameters& atom, std::span<const double> r, double amplitude, double d) const {
+  thread_local std::vector<double> g;
+  return score(atom, r, amplitude, d, g);
+}
+
+LineCandidate LineProposals::score(const AtomParameters& atom, std::span<const double> r, double amplitude, double d,
+                                   std::vector<double>& g) const {
   AtomSums sums;
   sums.reset(r.size());
   thread_local AtomValues values;
   model_->add(atom, d, sums, &values);
   // The atom alone through the circuit's first-order terms (as the record model puts it).
-  thread_local std::vector<double> g;
   g.resize(r.size());
   model_->unit_voltage(sums, g);
   double dot = 0.0, energy = 0.0;
@@ -158,9 +166,9 @@ void LineProposals::load_residual(Residual& q) const {
   fftw_execute_dft(fft_->forward, fft_->a, fft_->record);
 }
 
-void LineProposals::matched_filter(double omega, std::vector<std::complex<double>>& matched) const {
-  // K(tau) = E(tau) e^{i omega tau}; C = IFFT(FFT(r) conj(FFT(K))): the sliding matched filter
-  // C(t_b) = sum_tau r(t_b + tau) E(tau) e^{-i omega tau} at every t_b at once.
+const std::vector<std::complex<double>>& LineProposals::kernel_transform(double omega) {
+  for (const KernelTransform& k : kernels_)
+    if (k.omega == omega) return k.transform;
   const std::size_t samples = model_->samples(), sliding = fft_->sliding;
   const double h = model_->atoms().grid().step_s;
   for (std::size_t j = 0; j < sliding; ++j) {
@@ -172,8 +180,21 @@ void LineProposals::matched_filter(double omega, std::vector<std::complex<double
     }
   }
   fftw_execute_dft(fft_->forward, fft_->a, fft_->b);
+  if (kernels_.size() >= KERNELS_KEPT) kernels_.erase(kernels_.begin());
+  KernelTransform& k = kernels_.emplace_back();
+  k.omega = omega;
+  k.transform.resize(sliding);
+  for (std::size_t j = 0; j < sliding; ++j) k.transform[j] = std::complex<double>(fft_->b[j][0], fft_->b[j][1]);
+  return k.transform;
+}
+
+void LineProposals::matched_filter(double omega, std::vector<std::complex<double>>& matched) {
+  // K(tau) = E(tau) e^{i omega tau}; C = IFFT(FFT(r) conj(FFT(K))): the sliding matched filter
+  // C(t_b) = sum_tau r(t_b + tau) E(tau) e^{-i omega tau} at every t_b at once.
+  const std::size_t samples = model_->samples(), sliding = fft_->sliding;
+  const std::vector<std::complex<double>>& kernel = kernel_transform(omega);
   for (std::size_t j = 0; j < sliding; ++j) {
-    const std::complex<double> x(fft_->record[j][0], fft_->record[j][1]), y(fft_->b[j][0], fft_->b[j][1]);
+    const std::complex<double> x(fft_->record[j][0], fft_->record[j][1]), y = kernel[j];
     const std::complex<double> z = x * std::conj(y);
     fft_->a[j][0] = z.real(), fft_->a[j][1] = z.imag();
   }
@@ -348,8 +369,26 @@ std::vector<LineCandidate> LineProposals::propose_placements(const AtomParameter
                                                          double d, std::size_t count) {
   Residual q{r, {}, amplitude, d};
   load_residual(q);
+  return placements(atom, q, count, nullptr);
+}
+
+std::vector<std::vector<LineProposals::Placement>> LineProposals::propose_placements_with_voltages(
+    std::span<const AtomParameters> atoms, std::span<const double> r, double amplitude, double d, std::size_t count) {
+  Residual q{r, {}, amplitude, d};
+  load_residual(q);
+  std::vector<std::vector<Placement>> out(atoms.size());
+  std::vector<std::vector<double>> units;
+  for (std::size_t i = 0; i < atoms.size(); ++i) {
+    const std::vector<LineCandidate> found = placements(atoms[i], q, count, &units);
+    for (std::size_t c = 0; c < found.size(); ++c) out[i].push_back({found[c], std::move(units[c])});
+  }
+  return out;
+}
+
+std::vector<LineCandidate> LineProposals::placements(const AtomParameters& atom, const Residual& q, std::size_t count,
+                                                     std::vector<std::vector<double>>* units) {
   std::vector<std::complex<double>> matched;
-  matched_filter(model_->atoms().model().tail_angular_frequency(atom, d), matched);
+  matched_filter(model_->atoms().model().tail_angular_frequency(atom, q.d), matched);
   std::vector<Rough> rough;
   add_placements(atom, q, matched, rough);
   // The best placements at least half a period or a load grid step apart (a period on is the
@@ -360,16 +399,28 @@ std::vector<LineCandidate> LineProposals::propose_placements(const AtomParameter
   auto worse = [](const Rough& x, const Rough& y) { return x.score < y.score; };
   std::make_heap(rough.begin(), rough.end(), worse);
   std::vector<LineCandidate> out;
+  std::vector<std::vector<double>> g;
   for (auto heap_end = rough.end(); heap_end != rough.begin() && out.size() < count; --heap_end) {
     std::pop_heap(rough.begin(), heap_end, worse);
     const Rough& c = *(heap_end - 1);
     const bool close = std::any_of(out.begin(), out.end(), [&](const LineCandidate& o) {
       return std::abs(o.atom.onset_s - c.atom.onset_s) < 0.5 * period && std::abs(std::log(o.atom.load_n / c.atom.load_n)) < PLACEMENT_LOG_LOAD;
     });
-    if (!close) out.push_back(score(c.atom, r, amplitude, d));
+    if (close) continue;
+    thread_local std::vector<double> unused;
+    out.push_back(score(c.atom, q.r, q.amplitude, q.d, units ? g.emplace_back() : unused));
   }
-  std::sort(out.begin(), out.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
-  return out;
+  // Best first by exact score (the order std::sort gave them, kept for the units alongside).
+  std::vector<std::size_t> order(out.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return out[x].score_v2 > out[y].score_v2; });
+  std::vector<LineCandidate> sorted;
+  if (units) units->clear();
+  for (std::size_t i : order) {
+    sorted.push_back(out[i]);
+    if (units) units->push_back(std::move(g.at(i)));
+  }
+  return sorted;
 }
 
 }  // namespace stengmc
