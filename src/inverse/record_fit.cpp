@@ -13,6 +13,37 @@ void sort_atoms(FitState& state) {
             [](const AtomParameters& a, const AtomParameters& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
 }
 
+namespace {
+
+//! `normal` (atoms in the order of `before`, per_atom parameters each, then the shared ones)
+//! with its atoms' rows and columns in the order of `after`, the same atoms sorted.
+Eigen::MatrixXd sorted_normal_matrix(const Eigen::MatrixXd& normal, const FitState& before, const FitState& after,
+                                     std::size_t per_atom) {
+  const std::size_t n = before.atoms.size();
+  // Which atom of `before` each of `after` is (identical parameters; identical atoms have
+  // identical rows, so either of them will do).
+  std::vector<Eigen::Index> index(static_cast<std::size_t>(normal.rows()));
+  std::vector<bool> used(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const AtomParameters& a = after.atoms[i];
+    std::size_t from = n;
+    for (std::size_t k = 0; k < n && from == n; ++k) {
+      const AtomParameters& b = before.atoms[k];
+      if (!used[k] && a.stiffness_n_per_m == b.stiffness_n_per_m && a.load_n == b.load_n && a.onset_s == b.onset_s) from = k;
+    }
+    if (from == n) throw Error("RecordFit: the sorted atoms are not those fitted");
+    used[from] = true;
+    for (std::size_t p = 0; p < per_atom; ++p) index[i * per_atom + p] = static_cast<Eigen::Index>(from * per_atom + p);
+  }
+  for (std::size_t c = n * per_atom; c < index.size(); ++c) index[c] = static_cast<Eigen::Index>(c);
+  Eigen::MatrixXd out(normal.rows(), normal.cols());
+  for (Eigen::Index r = 0; r < out.rows(); ++r)
+    for (Eigen::Index c = 0; c < out.cols(); ++c) out(r, c) = normal(index[static_cast<std::size_t>(r)], index[static_cast<std::size_t>(c)]);
+  return out;
+}
+
+}  // namespace
+
 RecordFit::RecordFit(const RecordModel& model, const FitLayout& layout, const LoadPrior& loads, std::span<const double> record)
     : model_(&model), layout_(layout), loads_(&loads), record_(record) {
   if (record.size() != model.samples()) throw Error("RecordFit: the record and the model's grid differ in length");
@@ -287,11 +318,18 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       if (!accepted || gain < 1e-6 + 1e-12 * objective) break;
     }
   }
+  const FitState unsorted = s;
   sort_atoms(s);
   fit.residual_v2 = rss;
   fit.penalty = penalty;
   fit.state = s;
-  if (normal_matrix && !s.atoms.empty()) {
+  // When every parameter was free, J^T J at the final point is the last one the iterations
+  // made, its atoms in their order before the sort: permuted, not computed again (a full
+  // refit's last Jacobian, and half the cost of a refit of no iterations).
+  const bool all_free = moving.size() == n && shared == (L.shared() > 0) && p_count > 0;
+  if (normal_matrix && !s.atoms.empty() && all_free) {
+    fit.normal_matrix = sorted_normal_matrix(normal_jj, unsorted, s, per_atom);
+  } else if (normal_matrix && !s.atoms.empty()) {
     // J^T J over every free parameter of the whole fit: all atoms, and the shared ones.
     moving.resize(s.atoms.size());
     std::iota(moving.begin(), moving.end(), 0);
