@@ -274,6 +274,10 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
     }
   };
 
+  // When every parameter is free, J^T J at the final point is the last one the iterations
+  // made, its atoms in their order before the sort: permuted, not computed again (a full
+  // refit's last Jacobian, and half the cost of a refit of no iterations).
+  const bool all_free = moving.size() == n && shared == (L.shared() > 0) && p_count > 0;
   OrderFit fit;
   Eigen::VectorXd x = pack(s);
   clamp_into(x);
@@ -293,8 +297,9 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       // Minimising rss / sigma^2 + penalty: (J^T J / sigma^2 + P) dx = J^T r / sigma^2 - grad(penalty) / 2.
       const Eigen::MatrixXd normal = normal_jj / sigma2;
       const Eigen::VectorXd gradient = jacobian_r / sigma2 - 0.5 * prior_gradient;
-      bool accepted = false;
-      double gain = 0.0;
+      bool accepted = false, converged = false;
+      // Converged when the objective (in units of sigma^2) no longer moves by this.
+      const double tolerance = 1e-6 + 1e-12 * objective;
       while (lambda < 1e10) {
         Eigen::MatrixXd damped = normal;
         for (Eigen::Index i = 0; i < damped.rows(); ++i) damped(i, i) += 0.5 * prior_curvature(i) + lambda * normal(i, i) + 1e-300;
@@ -304,18 +309,24 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
         unpack(trial_x, trial_state);
         const double trial_objective = evaluate(trial_state, nullptr, nullptr, &trial_rss, &trial_penalty);
         if (trial_objective < objective) {
-          gain = objective - trial_objective;
+          const double gain = objective - trial_objective;
           x = trial_x;
           s = trial_state;
-          objective = evaluate(s, &normal_jj, &jacobian_r, &rss, &penalty);  // the Jacobian at the new point
+          converged = gain < tolerance;
           lambda = std::max(lambda / 3.0, 1e-12);
           accepted = true;
+          if (converged && !(normal_matrix && all_free)) {
+            // The last step: its Jacobian would not be used (the final J^T J is asked for, or
+            // can be taken from the iterations, only when every parameter is free).
+            objective = trial_objective, rss = trial_rss, penalty = trial_penalty;
+          } else {
+            objective = evaluate(s, &normal_jj, &jacobian_r, &rss, &penalty);  // the Jacobian at the new point
+          }
           break;
         }
         lambda *= 4.0;
       }
-      // Converged when the objective (in units of sigma^2) no longer moves.
-      if (!accepted || gain < 1e-6 + 1e-12 * objective) break;
+      if (!accepted || converged) break;
     }
   }
   const FitState unsorted = s;
@@ -323,10 +334,6 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
   fit.residual_v2 = rss;
   fit.penalty = penalty;
   fit.state = s;
-  // When every parameter was free, J^T J at the final point is the last one the iterations
-  // made, its atoms in their order before the sort: permuted, not computed again (a full
-  // refit's last Jacobian, and half the cost of a refit of no iterations).
-  const bool all_free = moving.size() == n && shared == (L.shared() > 0) && p_count > 0;
   if (normal_matrix && !s.atoms.empty() && all_free) {
     fit.normal_matrix = sorted_normal_matrix(normal_jj, unsorted, s, per_atom);
   } else if (normal_matrix && !s.atoms.empty()) {
