@@ -166,6 +166,25 @@ void LineProposals::load_residual(Residual& q) const {
   fftw_execute_dft(fft_->forward, fft_->a, fft_->record);
 }
 
+std::complex<double> LineProposals::matched_value(std::span<const double> r, double omega, std::size_t at) const {
+  // sum_tau r(at + tau) E(tau) e^{-i omega h tau}; the phase turned by a rotation between exact
+  // values every ROTATION_BLOCK samples (its round-off stays ~1e-14).
+  constexpr std::size_t ROTATION_BLOCK = 256;
+  const std::size_t samples = model_->samples();
+  const double h = model_->atoms().grid().step_s;
+  const std::complex<double> turn = std::polar(1.0, -omega * h);
+  std::complex<double> sum;
+  for (std::size_t block = 0; at + block < samples; block += ROTATION_BLOCK) {
+    std::complex<double> phase = std::polar(1.0, -omega * h * static_cast<double>(block));
+    const std::size_t end = std::min(samples - at, block + ROTATION_BLOCK);
+    for (std::size_t tau = block; tau < end; ++tau) {
+      sum += (r[at + tau] * envelope_[tau]) * phase;
+      phase *= turn;
+    }
+  }
+  return sum;
+}
+
 const std::vector<std::complex<double>>& LineProposals::kernel_transform(double omega) {
   for (const KernelTransform& k : kernels_)
     if (k.omega == omega) return k.transform;
@@ -247,15 +266,34 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
   // the loads and onsets the layout allows. For each frequency the tail's correlation with r
   // at every t_b at once: the sliding matched filter C(t_b) = sum_tau r(t_b + tau) E(tau)
   // e^{-i omega tau}, a cross-correlation by FFT.
+  // Where the layout fixes an atom's placement (its onset known, its load shared), each
+  // frequency has one breakaway, and C there is summed directly: the whole filter's two FFTs
+  // cost ~30 times as much, for one value (they were 12 % of an ideal record's time).
+  const bool one_placement = !layout_.onset_free && !layout_.load_per_atom;
   Residual q{r, {}, amplitude, d};
-  load_residual(q);
+  if (one_placement) {
+    q.prefix.assign(samples + 1, 0.0);
+    for (std::size_t j = 0; j < samples; ++j) q.prefix[j + 1] = q.prefix[j] + r[j];
+  } else {
+    load_residual(q);
+  }
   std::vector<Rough> rough;
   std::vector<std::complex<double>> matched;
   for (std::size_t peak : peaks) {
     const double omega_bin = bin_rad_per_s * static_cast<double>(first_bin_ + peak);
     const double k = std::clamp(m * (omega_bin * omega_bin + d * d), lib.min_stiffness(), lib.max_stiffness());
     AtomParameters nominal{k, layout_.nominal_load_n * (layout_.load_shared ? load_factor : 1.0), layout_.onset_min_s};
-    matched_filter(atom_model.tail_angular_frequency(nominal, d), matched);
+    const double omega = atom_model.tail_angular_frequency(nominal, d);
+    if (one_placement) {
+      // The breakaway add_breakaways puts this atom at.
+      const double omega0 = std::sqrt(k / m);
+      const ShapeWeights w = lib.shapes().weights(atom_model.carried_phase(nominal), d / omega0);
+      const std::size_t off = std::min(samples - 1, index_of(nominal.onset_s + w.theta_b / omega0));
+      matched.assign(samples, std::complex<double>());
+      matched[off] = matched_value(r, omega, off);
+    } else {
+      matched_filter(omega, matched);
+    }
     add_placements(nominal, q, matched, rough);
   }
   // The best distinct ones, best first: neighbours on the grid (a breakaway a few samples on, a

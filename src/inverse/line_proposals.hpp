@@ -85,6 +85,9 @@ class LineProposals {
   void load_residual(Residual& q) const;
   //! The sliding matched filter of the loaded residual at tail frequency omega [rad/s].
   void matched_filter(double omega, std::vector<std::complex<double>>& matched);
+  //! One value of the sliding matched filter of `r` at tail frequency omega, C(t_b) at sample
+  //! `at`, summed directly.
+  [[nodiscard]] std::complex<double> matched_value(std::span<const double> r, double omega, std::size_t at) const;
   //! The transform of the matched filter's kernel E(tau) e^{i omega tau}: it depends on omega
   //! alone, and the pair re-seat asks for each atom's once per pair it is in, so the last
   //! KERNELS_KEPT are kept.
