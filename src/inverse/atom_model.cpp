@@ -53,10 +53,12 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
   const double first_position = (a.onset_s - grid_.start_s) / step;
   out.first = first_position <= 0.0 ? 0 : std::min(samples, static_cast<std::size_t>(std::ceil(first_position - 1e-9)));
   const std::size_t count = samples - out.first;
-  out.u.assign(count, 0.0);
-  out.slope.assign(count, 0.0);
+  // Sized, not zeroed: the head writes every sample before theta_e, the tail every one from
+  // its start, which comes before theta_e (an atom is evaluated thousands of times a record).
+  out.u.resize(count);
+  out.slope.resize(count);
   if (derivatives)
-    for (auto* v : {&out.d_lnk, &out.d_lnn, &out.d_onset, &out.d_lnd}) v->assign(count, 0.0);
+    for (auto* v : {&out.d_lnk, &out.d_lnn, &out.d_onset, &out.d_lnd}) v->resize(count);
   if (count == 0) return;
 
   // d/dp of the dimensionless inputs, p = (ln k, ln N, t_on, ln d).
