@@ -76,7 +76,7 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
   for (std::size_t j = 0; j < count; ++j) {
     const double t = t0 + static_cast<double>(j) * step;
     const double theta = omega0 * (t - a.onset_s);
-    if (theta >= theta_e) continue;
+    if (theta >= theta_e) break;  // theta grows with j: the rest is tail (the scan went on over all 10^4)
     head_count = j + 1;
     const ShapePoint h = shapes_->head(w, theta);
     out.u[j] = h.u;
