@@ -180,7 +180,7 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
   };
 
   // Atoms that do not move are summed once.
-  AtomSums frozen;
+  AtomSums& frozen = work_.frozen;
   frozen.reset(m_count);
   {
     std::vector<bool> is_moving(n, false);
@@ -189,40 +189,44 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       if (!is_moving[i]) model_->add(s.atoms[i], s.damping_rate_per_s, frozen);
   }
   const double sigma2 = sigma_v_ * sigma_v_;
-  std::vector<double> unit(m_count), wunit, r;
-  std::vector<AtomValues> values(moving.size());
-  AtomSums sums;
+  std::vector<double>& unit = work_.unit;
+  std::vector<double>& wunit = work_.wunit;
+  std::vector<double>& r = work_.residual;
+  unit.resize(m_count);
+  // Each evaluation writes its atom's values whole: kept from the last refit, they are not reallocated.
+  std::vector<AtomValues>& values = work_.values;
+  values.resize(moving.size());
+  AtomSums& sums = work_.sums;
   // The objective at `st` (linear parameters solved into it): whitened RSS / sigma^2 plus the
   // loads' prior; with `normal`, the normal equations of the whitened, projected Jacobian
   // P J (P projects out the linear parameters' columns): (P J)^T (P J) into `normal` and
   // (P J)^T r into `gradient`. P J itself is never formed: with Q an orthonormal basis of
   // those columns and B = Q^T J, (P J)^T (P J) = J^T J - B^T B and (P J)^T r = J^T r - B^T Q^T r,
   // which spares an M x p product and its subtraction at every step.
-  Eigen::MatrixXd jacobian_scratch;
   auto evaluate = [&](FitState& st, Eigen::MatrixXd* normal, Eigen::VectorXd* gradient, double* rss_out, double* penalty_out) {
-    Eigen::MatrixXd* jacobian = normal ? &jacobian_scratch : nullptr;
     sums = frozen;
     for (std::size_t k = 0; k < moving.size(); ++k)
-      model_->add(st.atoms[moving[k]], st.damping_rate_per_s, sums, &values[k], jacobian != nullptr);
+      model_->add(st.atoms[moving[k]], st.damping_rate_per_s, sums, &values[k], normal != nullptr);
     model_->unit_voltage(sums, unit);
     const double rss = solve_linear(st, unit, r, wunit);
     double penalty = 0.0;
     for (const AtomParameters& a : st.atoms) penalty += load_penalty(a.load_n);
     if (rss_out) *rss_out = rss;
     if (penalty_out) *penalty_out = penalty;
-    if (jacobian) {
+    if (normal) {
       // Not zeroed as a whole (M x p, 4 MB at 16 atoms): an atom's own columns are written
       // whole, the shared ones zeroed and summed over atoms.
-      jacobian->resize(static_cast<Eigen::Index>(m_count), static_cast<Eigen::Index>(p_count));
+      work_.jacobian.resize(m_count * p_count);
+      Eigen::Map<Eigen::MatrixXd> jacobian(work_.jacobian.data(), static_cast<Eigen::Index>(m_count), static_cast<Eigen::Index>(p_count));
       const double scale = st.amplitude * model_->volts_per_unit();
       Eigen::Index c = 0;
       auto set = [&](const AtomValues& v, const std::vector<double>& d, Eigen::Index column) {
-        double* col = jacobian->col(column).data();
+        double* col = jacobian.col(column).data();
         std::fill(col, col + v.first, 0.0);
         for (std::size_t j = 0; j < d.size(); ++j) col[v.first + j] = scale * d[j];
       };
       auto add = [&](const AtomValues& v, const std::vector<double>& d, Eigen::Index column) {
-        double* col = jacobian->col(column).data();
+        double* col = jacobian.col(column).data();
         for (std::size_t j = 0; j < d.size(); ++j) col[v.first + j] += scale * d[j];
       };
       for (std::size_t k = 0; k < moving.size(); ++k) {
@@ -232,25 +236,25 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       }
       if (shared) {
         if (L.damping_free) {
-          jacobian->col(c).setZero();
+          jacobian.col(c).setZero();
           for (std::size_t k = 0; k < moving.size(); ++k) add(values[k], values[k].d_lnd, c);
           ++c;
         }
         if (L.load_shared) {
-          jacobian->col(c).setZero();
+          jacobian.col(c).setZero();
           for (std::size_t k = 0; k < moving.size(); ++k) add(values[k], values[k].d_lnn, c);
           ++c;
         }
       }
-      for (Eigen::Index col = 0; col < jacobian->cols(); ++col) {
-        std::span<double> column(jacobian->col(col).data(), m_count);
+      for (Eigen::Index col = 0; col < jacobian.cols(); ++col) {
+        std::span<double> column(jacobian.col(col).data(), m_count);
         whitener_.apply(column, column);
       }
       const Eigen::Map<const Eigen::VectorXd> residual_vector(r.data(), static_cast<Eigen::Index>(m_count));
-      normal->setZero(jacobian->cols(), jacobian->cols());
-      normal->selfadjointView<Eigen::Lower>().rankUpdate(jacobian->transpose());
+      normal->setZero(jacobian.cols(), jacobian.cols());
+      normal->selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
       *normal = normal->selfadjointView<Eigen::Lower>();
-      *gradient = jacobian->transpose() * residual_vector;
+      *gradient = jacobian.transpose() * residual_vector;
       // Variable projection: the linear parameters' columns projected out.
       std::vector<const double*> linear;
       if (L.amplitude_free) linear.push_back(wunit.data());
@@ -261,7 +265,7 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
           q.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Eigen::VectorXd>(linear[l], static_cast<Eigen::Index>(m_count));
         const Eigen::HouseholderQR<Eigen::MatrixXd> qr(q);
         const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(q.rows(), q.cols());
-        const Eigen::MatrixXd b = basis.transpose() * *jacobian;
+        const Eigen::MatrixXd b = basis.transpose() * jacobian;
         *normal -= b.transpose() * b;
         *gradient -= b.transpose() * (basis.transpose() * residual_vector);
       }
@@ -352,7 +356,7 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
     shared = L.shared() > 0;
     p_count = moving.size() * per_atom + (shared ? L.shared() : 0);
     frozen.reset(m_count);
-    values.assign(moving.size(), AtomValues{});
+    values.resize(moving.size());
     Eigen::VectorXd unused_gradient;
     FitState final_state = fit.state;
     evaluate(final_state, &fit.normal_matrix, &unused_gradient, nullptr, nullptr);
