@@ -112,6 +112,7 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
     phase_p_const[p] = -nu * theta_b_p(p) + w.phi_lnpi * lnpi_p[p] + w.phi_lnzeta * lnzeta_p[p];
   }
   const double omega_tail = nu * omega0;
+  const double onset_phase_rate = nu * theta_p(0.0, 2) + phase_p_const[2];  // d phase / d t_on (theta_p(., 2) = -omega0)
   const double c_step = std::cos(omega_tail * step), s_step = std::sin(omega_tail * step);
   for (std::size_t block = 0; block < tail_count; block += ROTATION_BLOCK) {
     const std::size_t end = std::min(tail_count, block + ROTATION_BLOCK);
@@ -125,6 +126,24 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
       const double A = amp[i];
       const double tail = A * c;
       const double tail_slope = amp_s[i] * c - A * s * omega_tail;
+      if (theta >= theta_e || j >= head_count) {
+        // The tail alone (all but the first few hundred samples): the derivatives below written
+        // out per parameter, without the general form's products by the 0s and 1s of
+        // lnbeta_p, lnd_p and theta_p (the same values, but IEEE arithmetic cannot drop them).
+        out.u[j] = tail;
+        out.slope[j] = tail_slope;
+        if (derivatives) {
+          const double As = A * s;
+          out.d_lnk[j] = amp_s[i] * s_p[0] * c - As * (nu * (0.5 * theta) + phase_p_const[0]);
+          out.d_lnn[j] = (amp_s[i] * s_p[1] + amp_lnbeta[i]) * c - As * phase_p_const[1];
+          out.d_onset[j] = amp_s[i] * s_p[2] * c - As * onset_phase_rate;
+          out.d_lnd[j] = (amp_s[i] * s_p[3] + amp_d[i] * d) * c - As * phase_p_const[3];
+        }
+        const double cn = c * c_step - s * s_step;
+        s = s * c_step + c * s_step;
+        c = cn;
+        continue;
+      }
       double tail_p[4] = {0, 0, 0, 0};
       if (derivatives)
         for (int p = 0; p < 4; ++p) {
