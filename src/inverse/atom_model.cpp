@@ -114,11 +114,48 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
   const double omega_tail = nu * omega0;
   const double onset_phase_rate = nu * theta_p(0.0, 2) + phase_p_const[2];  // d phase / d t_on (theta_p(., 2) = -omega0)
   const double c_step = std::cos(omega_tail * step), s_step = std::sin(omega_tail * step);
-  for (std::size_t block = 0; block < tail_count; block += ROTATION_BLOCK) {
-    const std::size_t end = std::min(tail_count, block + ROTATION_BLOCK);
+  // Where the tail is alone (from `alone_from` on: both tests below grow true with i) and no
+  // derivative is asked for, two rotation blocks are turned side by side: each keeps its own
+  // exact start and the same operations in the same order (the same bits), but one block's
+  // rotation, a chain of dependent products, no longer waits for the other's.
+  std::size_t alone_from = tail_count;
+  if (!derivatives)
+    for (std::size_t i = 0; i < tail_count; ++i) {
+      const double theta = omega0 * (first_t + static_cast<double>(i) * step - a.onset_s);
+      if (theta >= theta_e || tail_first + i >= head_count) {
+        alone_from = i;
+        break;
+      }
+    }
+  auto block_start = [&](std::size_t block, double& c, double& s) {
     const double t_block = first_t + static_cast<double>(block) * step;
     const double phase0 = nu * (omega0 * (t_block - a.onset_s) - w.theta_b) + w.phi;
-    double c = std::cos(phase0), s = std::sin(phase0);
+    c = std::cos(phase0), s = std::sin(phase0);
+  };
+  auto tail_alone = [&](std::size_t i, double& c, double& s) {
+    const std::size_t j = tail_first + i;
+    const double A = amp[i];
+    out.u[j] = A * c;
+    out.slope[j] = amp_s[i] * c - A * s * omega_tail;
+    const double cn = c * c_step - s * s_step;
+    s = s * c_step + c * s_step;
+    c = cn;
+  };
+  for (std::size_t block = 0; block < tail_count; block += ROTATION_BLOCK) {
+    if (block >= alone_from && block + ROTATION_BLOCK < tail_count) {
+      const std::size_t second = block + ROTATION_BLOCK, second_end = std::min(tail_count, second + ROTATION_BLOCK);
+      double c1 = 0.0, s1 = 0.0, c2 = 0.0, s2 = 0.0;
+      block_start(block, c1, s1);
+      block_start(second, c2, s2);
+      std::size_t k = 0;
+      for (; second + k < second_end; ++k) tail_alone(block + k, c1, s1), tail_alone(second + k, c2, s2);
+      for (; k < ROTATION_BLOCK; ++k) tail_alone(block + k, c1, s1);
+      block = second;  // the loop's step moves past the second
+      continue;
+    }
+    const std::size_t end = std::min(tail_count, block + ROTATION_BLOCK);
+    double c = 0.0, s = 0.0;
+    block_start(block, c, s);
     for (std::size_t i = block; i < end; ++i) {
       const std::size_t j = tail_first + i;
       const double t = first_t + static_cast<double>(i) * step;
