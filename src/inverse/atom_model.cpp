@@ -53,10 +53,12 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
   const double first_position = (a.onset_s - grid_.start_s) / step;
   out.first = first_position <= 0.0 ? 0 : std::min(samples, static_cast<std::size_t>(std::ceil(first_position - 1e-9)));
   const std::size_t count = samples - out.first;
-  out.u.assign(count, 0.0);
-  out.slope.assign(count, 0.0);
+  // Sized, not zeroed: the head writes every sample before theta_e, the tail every one from
+  // its start, which comes before theta_e (an atom is evaluated thousands of times a record).
+  out.u.resize(count);
+  out.slope.resize(count);
   if (derivatives)
-    for (auto* v : {&out.d_lnk, &out.d_lnn, &out.d_onset, &out.d_lnd}) v->assign(count, 0.0);
+    for (auto* v : {&out.d_lnk, &out.d_lnn, &out.d_onset, &out.d_lnd}) v->resize(count);
   if (count == 0) return;
 
   // d/dp of the dimensionless inputs, p = (ln k, ln N, t_on, ln d).
@@ -74,7 +76,7 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
   for (std::size_t j = 0; j < count; ++j) {
     const double t = t0 + static_cast<double>(j) * step;
     const double theta = omega0 * (t - a.onset_s);
-    if (theta >= theta_e) continue;
+    if (theta >= theta_e) break;  // theta grows with j: the rest is tail (the scan went on over all 10^4)
     head_count = j + 1;
     const ShapePoint h = shapes_->head(w, theta);
     out.u[j] = h.u;
@@ -110,12 +112,50 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
     phase_p_const[p] = -nu * theta_b_p(p) + w.phi_lnpi * lnpi_p[p] + w.phi_lnzeta * lnzeta_p[p];
   }
   const double omega_tail = nu * omega0;
+  const double onset_phase_rate = nu * theta_p(0.0, 2) + phase_p_const[2];  // d phase / d t_on (theta_p(., 2) = -omega0)
   const double c_step = std::cos(omega_tail * step), s_step = std::sin(omega_tail * step);
-  for (std::size_t block = 0; block < tail_count; block += ROTATION_BLOCK) {
-    const std::size_t end = std::min(tail_count, block + ROTATION_BLOCK);
+  // Where the tail is alone (from `alone_from` on: both tests below grow true with i) and no
+  // derivative is asked for, two rotation blocks are turned side by side: each keeps its own
+  // exact start and the same operations in the same order (the same bits), but one block's
+  // rotation, a chain of dependent products, no longer waits for the other's.
+  std::size_t alone_from = tail_count;
+  if (!derivatives)
+    for (std::size_t i = 0; i < tail_count; ++i) {
+      const double theta = omega0 * (first_t + static_cast<double>(i) * step - a.onset_s);
+      if (theta >= theta_e || tail_first + i >= head_count) {
+        alone_from = i;
+        break;
+      }
+    }
+  auto block_start = [&](std::size_t block, double& c, double& s) {
     const double t_block = first_t + static_cast<double>(block) * step;
     const double phase0 = nu * (omega0 * (t_block - a.onset_s) - w.theta_b) + w.phi;
-    double c = std::cos(phase0), s = std::sin(phase0);
+    c = std::cos(phase0), s = std::sin(phase0);
+  };
+  auto tail_alone = [&](std::size_t i, double& c, double& s) {
+    const std::size_t j = tail_first + i;
+    const double A = amp[i];
+    out.u[j] = A * c;
+    out.slope[j] = amp_s[i] * c - A * s * omega_tail;
+    const double cn = c * c_step - s * s_step;
+    s = s * c_step + c * s_step;
+    c = cn;
+  };
+  for (std::size_t block = 0; block < tail_count; block += ROTATION_BLOCK) {
+    if (block >= alone_from && block + ROTATION_BLOCK < tail_count) {
+      const std::size_t second = block + ROTATION_BLOCK, second_end = std::min(tail_count, second + ROTATION_BLOCK);
+      double c1 = 0.0, s1 = 0.0, c2 = 0.0, s2 = 0.0;
+      block_start(block, c1, s1);
+      block_start(second, c2, s2);
+      std::size_t k = 0;
+      for (; second + k < second_end; ++k) tail_alone(block + k, c1, s1), tail_alone(second + k, c2, s2);
+      for (; k < ROTATION_BLOCK; ++k) tail_alone(block + k, c1, s1);
+      block = second;  // the loop's step moves past the second
+      continue;
+    }
+    const std::size_t end = std::min(tail_count, block + ROTATION_BLOCK);
+    double c = 0.0, s = 0.0;
+    block_start(block, c, s);
     for (std::size_t i = block; i < end; ++i) {
       const std::size_t j = tail_first + i;
       const double t = first_t + static_cast<double>(i) * step;
@@ -123,6 +163,24 @@ void AtomModel::evaluate(const AtomParameters& a, double d, AtomValues& out, boo
       const double A = amp[i];
       const double tail = A * c;
       const double tail_slope = amp_s[i] * c - A * s * omega_tail;
+      if (theta >= theta_e || j >= head_count) {
+        // The tail alone (all but the first few hundred samples): the derivatives below written
+        // out per parameter, without the general form's products by the 0s and 1s of
+        // lnbeta_p, lnd_p and theta_p (the same values, but IEEE arithmetic cannot drop them).
+        out.u[j] = tail;
+        out.slope[j] = tail_slope;
+        if (derivatives) {
+          const double As = A * s;
+          out.d_lnk[j] = amp_s[i] * s_p[0] * c - As * (nu * (0.5 * theta) + phase_p_const[0]);
+          out.d_lnn[j] = (amp_s[i] * s_p[1] + amp_lnbeta[i]) * c - As * phase_p_const[1];
+          out.d_onset[j] = amp_s[i] * s_p[2] * c - As * onset_phase_rate;
+          out.d_lnd[j] = (amp_s[i] * s_p[3] + amp_d[i] * d) * c - As * phase_p_const[3];
+        }
+        const double cn = c * c_step - s * s_step;
+        s = s * c_step + c * s_step;
+        c = cn;
+        continue;
+      }
       double tail_p[4] = {0, 0, 0, 0};
       if (derivatives)
         for (int p = 0; p < 4; ++p) {

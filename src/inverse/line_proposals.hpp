@@ -52,19 +52,52 @@ class LineProposals {
   std::vector<LineCandidate> propose_placements(const AtomParameters& atom, std::span<const double> residual, double amplitude,
                                             double damping_rate, std::size_t count);
 
+  //! A placement with the atom's unit-amplitude voltage g (the record model of it alone), for
+  //! callers that score combinations of atoms by their overlaps <g_1, g_2>.
+  struct Placement {
+    LineCandidate candidate;
+    std::vector<double> unit_voltage;
+  };
+  //! propose_placements for each of `atoms` on the one residual `r` (transformed once), with
+  //! each placement's g kept: the candidates and their order are those of propose_placements.
+  std::vector<std::vector<Placement>> propose_placements_with_voltages(std::span<const AtomParameters> atoms,
+                                                                       std::span<const double> residual, double amplitude,
+                                                                       double damping_rate, std::size_t count);
+
   //! The exact score 2 a <r, g> - a^2 |g|^2 of one atom, and its energy.
   LineCandidate score(const AtomParameters& atom, std::span<const double> residual, double amplitude, double damping_rate) const;
+  //! The same, with the atom's unit-amplitude voltage g written into `unit_voltage`.
+  LineCandidate score(const AtomParameters& atom, std::span<const double> residual, double amplitude, double damping_rate,
+                      std::vector<double>& unit_voltage) const;
 
  private:
   struct Fft;
   struct Residual;
   struct Rough;
+  //! The tail where it starts, from an atom's shape weights: the same for every breakaway
+  //! time of one shape, so worked out once per shape, not once per rough candidate.
+  struct TailStart {
+    std::complex<double> phase;  //!< e^{i phi}
+    double amplitude = 0.0;      //!< the tail's velocity amplitude where it starts [v_b]
+  };
+  static TailStart tail_start(const ShapeWeights& w);
   //! Prefix sums and the sliding transform of a residual.
   void load_residual(Residual& q) const;
   //! The sliding matched filter of the loaded residual at tail frequency omega [rad/s].
-  void matched_filter(double omega, std::vector<std::complex<double>>& matched) const;
-  //! The rough score of `atom` (carried phase pi, shape w: the tail's phase and amplitude) breaking away at sample `breakaway`.
-  void add_rough(const AtomParameters& atom, double pi, const ShapeWeights& w, std::size_t breakaway, const Residual& q,
+  void matched_filter(double omega, std::vector<std::complex<double>>& matched);
+  //! One value of the sliding matched filter of `r` at tail frequency omega, C(t_b) at sample
+  //! `at`, summed directly.
+  [[nodiscard]] std::complex<double> matched_value(std::span<const double> r, double omega, std::size_t at) const;
+  //! The transform of the matched filter's kernel E(tau) e^{i omega tau}: it depends on omega
+  //! alone, and the pair re-seat asks for each atom's once per pair it is in, so the last
+  //! KERNELS_KEPT are kept.
+  const std::vector<std::complex<double>>& kernel_transform(double omega);
+  //! `count` placements of `atom` on the loaded residual `q`, best first (propose_placements),
+  //! each one's g into `units` when given.
+  std::vector<LineCandidate> placements(const AtomParameters& atom, const Residual& q, std::size_t count,
+                                        std::vector<std::vector<double>>* units);
+  //! The rough score of `atom` (carried phase pi, its tail starting as `tail`) breaking away at sample `breakaway`.
+  void add_rough(const AtomParameters& atom, double pi, const TailStart& tail, std::size_t breakaway, const Residual& q,
                  std::span<const std::complex<double>> matched, std::vector<Rough>& rough) const;
   //! `atom` at its onset, or at every onset the layout allows.
   void add_breakaways(AtomParameters atom, const Residual& q, std::span<const std::complex<double>> matched,
@@ -83,6 +116,11 @@ class LineProposals {
   std::vector<double> starts_s_;        // tail starts T_s
   std::size_t first_bin_ = 0, last_bin_ = 0;
   std::vector<double> loads_grid_;      // candidate loads when each atom has its own [N]
+  struct KernelTransform {
+    double omega = 0.0;
+    std::vector<std::complex<double>> transform;
+  };
+  std::vector<KernelTransform> kernels_;  // the last few kernel transforms, oldest first
 };
 
 }  // namespace stengmc

@@ -234,16 +234,16 @@ bool LineSearch::exchange(OrderFit& fit) {
         // their overlap counted (close lines' tails are far from orthogonal).
         for (std::size_t k = 0; k < samples; ++k) q[k] = r[k] + a * (g[i][k] + g[j][k]);
         const double without = dot(q, q);
-        const std::vector<LineCandidate> ci = proposals_->propose_placements(state.atoms[i], q, a, d, PAIR_ONSETS);
-        const std::vector<LineCandidate> cj = proposals_->propose_placements(state.atoms[j], q, a, d, PAIR_ONSETS);
-        std::vector<std::vector<double>> gi(ci.size()), gj(cj.size());
-        for (std::size_t u = 0; u < ci.size(); ++u) gi[u] = unit(ci[u].atom, d);
-        for (std::size_t v = 0; v < cj.size(); ++v) gj[v] = unit(cj[v].atom, d);
-        for (std::size_t u = 0; u < ci.size(); ++u)
-          for (std::size_t v = 0; v < cj.size(); ++v) {
-            const double joint = ci[u].score_v2 + cj[v].score_v2 - 2.0 * a * a * dot(gi[u], gj[v]);
+        // (Their unit voltages come with them: the scoring made them already.)
+        const AtomParameters pair[2] = {state.atoms[i], state.atoms[j]};
+        const std::vector<std::vector<LineProposals::Placement>> placed =
+            proposals_->propose_placements_with_voltages(pair, q, a, d, PAIR_ONSETS);
+        for (const LineProposals::Placement& at_i : placed[0])
+          for (const LineProposals::Placement& at_j : placed[1]) {
+            const double joint =
+                at_i.candidate.score_v2 + at_j.candidate.score_v2 - 2.0 * a * a * dot(at_i.unit_voltage, at_j.unit_voltage);
             const double gain = rss - (without - joint);
-            if (gain > 0.0) screened.push_back({i, j, ci[u].atom, cj[v].atom, gain});
+            if (gain > 0.0) screened.push_back({i, j, at_i.candidate.atom, at_j.candidate.atom, gain});
           }
       }
     std::sort(screened.begin(), screened.end(), [](const Exchange& e, const Exchange& f) { return e.gain > f.gain; });

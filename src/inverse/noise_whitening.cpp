@@ -1,6 +1,7 @@
 #include "inverse/noise_whitening.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -44,12 +45,23 @@ void Whitener::apply(std::span<const double> in, std::span<double> out) const {
     if (in.data() != out.data()) std::copy(in.begin(), in.end(), out.begin());
     return;
   }
-  // Backwards, so out may be in: each output reads only inputs at or before its index.
-  for (std::size_t t = in.size(); t-- > 0;) {
-    double e = in[t];
-    const std::size_t reach = std::min(p, t);
-    for (std::size_t j = 1; j <= reach; ++j) e += coefficients_[j - 1] * in[t - j];
-    out[t] = e;
+  // Backwards, so out may be in: each output reads only inputs at or before its index. By
+  // blocks of outputs, tap by tap: each output's sum keeps its order (in[t], then taps 1..p in
+  // turn: the same bits as one output at a time), but the outputs of a block are independent,
+  // so the loop over them vectorises where one output's p dependent additions could not (the
+  // filter is applied to every column of every Jacobian of a fit in coloured noise).
+  constexpr std::size_t BLOCK = 64;
+  std::array<double, BLOCK> e{};
+  for (std::size_t end = in.size(); end > 0;) {
+    const std::size_t begin = end > BLOCK ? end - BLOCK : 0, length = end - begin;
+    for (std::size_t i = 0; i < length; ++i) e[i] = in[begin + i];
+    for (std::size_t j = 1; j <= p; ++j) {
+      const double c = coefficients_[j - 1];
+      // Only outputs t >= j have a tap j.
+      for (std::size_t i = begin >= j ? 0 : j - begin; i < length; ++i) e[i] += c * in[begin + i - j];
+    }
+    for (std::size_t i = 0; i < length; ++i) out[begin + i] = e[i];
+    end = begin;
   }
 }
 

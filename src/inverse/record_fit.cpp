@@ -13,6 +13,37 @@ void sort_atoms(FitState& state) {
             [](const AtomParameters& a, const AtomParameters& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
 }
 
+namespace {
+
+//! `normal` (atoms in the order of `before`, per_atom parameters each, then the shared ones)
+//! with its atoms' rows and columns in the order of `after`, the same atoms sorted.
+Eigen::MatrixXd sorted_normal_matrix(const Eigen::MatrixXd& normal, const FitState& before, const FitState& after,
+                                     std::size_t per_atom) {
+  const std::size_t n = before.atoms.size();
+  // Which atom of `before` each of `after` is (identical parameters; identical atoms have
+  // identical rows, so either of them will do).
+  std::vector<Eigen::Index> index(static_cast<std::size_t>(normal.rows()));
+  std::vector<bool> used(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const AtomParameters& a = after.atoms[i];
+    std::size_t from = n;
+    for (std::size_t k = 0; k < n && from == n; ++k) {
+      const AtomParameters& b = before.atoms[k];
+      if (!used[k] && a.stiffness_n_per_m == b.stiffness_n_per_m && a.load_n == b.load_n && a.onset_s == b.onset_s) from = k;
+    }
+    if (from == n) throw Error("RecordFit: the sorted atoms are not those fitted");
+    used[from] = true;
+    for (std::size_t p = 0; p < per_atom; ++p) index[i * per_atom + p] = static_cast<Eigen::Index>(from * per_atom + p);
+  }
+  for (std::size_t c = n * per_atom; c < index.size(); ++c) index[c] = static_cast<Eigen::Index>(c);
+  Eigen::MatrixXd out(normal.rows(), normal.cols());
+  for (Eigen::Index r = 0; r < out.rows(); ++r)
+    for (Eigen::Index c = 0; c < out.cols(); ++c) out(r, c) = normal(index[static_cast<std::size_t>(r)], index[static_cast<std::size_t>(c)]);
+  return out;
+}
+
+}  // namespace
+
 RecordFit::RecordFit(const RecordModel& model, const FitLayout& layout, const LoadPrior& loads, std::span<const double> record)
     : model_(&model), layout_(layout), loads_(&loads), record_(record) {
   if (record.size() != model.samples()) throw Error("RecordFit: the record and the model's grid differ in length");
@@ -149,7 +180,7 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
   };
 
   // Atoms that do not move are summed once.
-  AtomSums frozen;
+  AtomSums& frozen = work_.frozen;
   frozen.reset(m_count);
   {
     std::vector<bool> is_moving(n, false);
@@ -158,59 +189,72 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       if (!is_moving[i]) model_->add(s.atoms[i], s.damping_rate_per_s, frozen);
   }
   const double sigma2 = sigma_v_ * sigma_v_;
-  std::vector<double> unit(m_count), wunit, r;
-  std::vector<AtomValues> values(moving.size());
-  AtomSums sums;
+  std::vector<double>& unit = work_.unit;
+  std::vector<double>& wunit = work_.wunit;
+  std::vector<double>& r = work_.residual;
+  unit.resize(m_count);
+  // Each evaluation writes its atom's values whole: kept from the last refit, they are not reallocated.
+  std::vector<AtomValues>& values = work_.values;
+  values.resize(moving.size());
+  AtomSums& sums = work_.sums;
   // The objective at `st` (linear parameters solved into it): whitened RSS / sigma^2 plus the
   // loads' prior; with `normal`, the normal equations of the whitened, projected Jacobian
   // P J (P projects out the linear parameters' columns): (P J)^T (P J) into `normal` and
   // (P J)^T r into `gradient`. P J itself is never formed: with Q an orthonormal basis of
   // those columns and B = Q^T J, (P J)^T (P J) = J^T J - B^T B and (P J)^T r = J^T r - B^T Q^T r,
   // which spares an M x p product and its subtraction at every step.
-  Eigen::MatrixXd jacobian_scratch;
   auto evaluate = [&](FitState& st, Eigen::MatrixXd* normal, Eigen::VectorXd* gradient, double* rss_out, double* penalty_out) {
-    Eigen::MatrixXd* jacobian = normal ? &jacobian_scratch : nullptr;
     sums = frozen;
     for (std::size_t k = 0; k < moving.size(); ++k)
-      model_->add(st.atoms[moving[k]], st.damping_rate_per_s, sums, &values[k], jacobian != nullptr);
+      model_->add(st.atoms[moving[k]], st.damping_rate_per_s, sums, &values[k], normal != nullptr);
     model_->unit_voltage(sums, unit);
     const double rss = solve_linear(st, unit, r, wunit);
     double penalty = 0.0;
     for (const AtomParameters& a : st.atoms) penalty += load_penalty(a.load_n);
     if (rss_out) *rss_out = rss;
     if (penalty_out) *penalty_out = penalty;
-    if (jacobian) {
-      jacobian->setZero(static_cast<Eigen::Index>(m_count), static_cast<Eigen::Index>(p_count));
+    if (normal) {
+      // Not zeroed as a whole (M x p, 4 MB at 16 atoms): an atom's own columns are written
+      // whole, the shared ones zeroed and summed over atoms.
+      work_.jacobian.resize(m_count * p_count);
+      Eigen::Map<Eigen::MatrixXd> jacobian(work_.jacobian.data(), static_cast<Eigen::Index>(m_count), static_cast<Eigen::Index>(p_count));
       const double scale = st.amplitude * model_->volts_per_unit();
       Eigen::Index c = 0;
-      auto put = [&](const AtomValues& v, const std::vector<double>& d, Eigen::Index column) {
-        double* col = jacobian->col(column).data();
+      auto set = [&](const AtomValues& v, const std::vector<double>& d, Eigen::Index column) {
+        double* col = jacobian.col(column).data();
+        std::fill(col, col + v.first, 0.0);
+        for (std::size_t j = 0; j < d.size(); ++j) col[v.first + j] = scale * d[j];
+      };
+      auto add = [&](const AtomValues& v, const std::vector<double>& d, Eigen::Index column) {
+        double* col = jacobian.col(column).data();
         for (std::size_t j = 0; j < d.size(); ++j) col[v.first + j] += scale * d[j];
       };
       for (std::size_t k = 0; k < moving.size(); ++k) {
-        put(values[k], values[k].d_lnk, c++);
-        if (L.load_per_atom) put(values[k], values[k].d_lnn, c++);
-        if (L.onset_free) put(values[k], values[k].d_onset, c++);
+        set(values[k], values[k].d_lnk, c++);
+        if (L.load_per_atom) set(values[k], values[k].d_lnn, c++);
+        if (L.onset_free) set(values[k], values[k].d_onset, c++);
       }
       if (shared) {
         if (L.damping_free) {
-          for (std::size_t k = 0; k < moving.size(); ++k) put(values[k], values[k].d_lnd, c);
+          jacobian.col(c).setZero();
+          for (std::size_t k = 0; k < moving.size(); ++k) add(values[k], values[k].d_lnd, c);
           ++c;
         }
         if (L.load_shared) {
-          for (std::size_t k = 0; k < moving.size(); ++k) put(values[k], values[k].d_lnn, c);
+          jacobian.col(c).setZero();
+          for (std::size_t k = 0; k < moving.size(); ++k) add(values[k], values[k].d_lnn, c);
           ++c;
         }
       }
-      for (Eigen::Index col = 0; col < jacobian->cols(); ++col) {
-        std::span<double> column(jacobian->col(col).data(), m_count);
+      for (Eigen::Index col = 0; col < jacobian.cols(); ++col) {
+        std::span<double> column(jacobian.col(col).data(), m_count);
         whitener_.apply(column, column);
       }
       const Eigen::Map<const Eigen::VectorXd> residual_vector(r.data(), static_cast<Eigen::Index>(m_count));
-      normal->setZero(jacobian->cols(), jacobian->cols());
-      normal->selfadjointView<Eigen::Lower>().rankUpdate(jacobian->transpose());
+      normal->setZero(jacobian.cols(), jacobian.cols());
+      normal->selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
       *normal = normal->selfadjointView<Eigen::Lower>();
-      *gradient = jacobian->transpose() * residual_vector;
+      *gradient = jacobian.transpose() * residual_vector;
       // Variable projection: the linear parameters' columns projected out.
       std::vector<const double*> linear;
       if (L.amplitude_free) linear.push_back(wunit.data());
@@ -221,7 +265,7 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
           q.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Eigen::VectorXd>(linear[l], static_cast<Eigen::Index>(m_count));
         const Eigen::HouseholderQR<Eigen::MatrixXd> qr(q);
         const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(q.rows(), q.cols());
-        const Eigen::MatrixXd b = basis.transpose() * *jacobian;
+        const Eigen::MatrixXd b = basis.transpose() * jacobian;
         *normal -= b.transpose() * b;
         *gradient -= b.transpose() * (basis.transpose() * residual_vector);
       }
@@ -243,6 +287,10 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
     }
   };
 
+  // When every parameter is free, J^T J at the final point is the last one the iterations
+  // made, its atoms in their order before the sort: permuted, not computed again (a full
+  // refit's last Jacobian, and half the cost of a refit of no iterations).
+  const bool all_free = moving.size() == n && shared == (L.shared() > 0) && p_count > 0;
   OrderFit fit;
   Eigen::VectorXd x = pack(s);
   clamp_into(x);
@@ -262,8 +310,9 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
       // Minimising rss / sigma^2 + penalty: (J^T J / sigma^2 + P) dx = J^T r / sigma^2 - grad(penalty) / 2.
       const Eigen::MatrixXd normal = normal_jj / sigma2;
       const Eigen::VectorXd gradient = jacobian_r / sigma2 - 0.5 * prior_gradient;
-      bool accepted = false;
-      double gain = 0.0;
+      bool accepted = false, converged = false;
+      // Converged when the objective (in units of sigma^2) no longer moves by this.
+      const double tolerance = 1e-6 + 1e-12 * objective;
       while (lambda < 1e10) {
         Eigen::MatrixXd damped = normal;
         for (Eigen::Index i = 0; i < damped.rows(); ++i) damped(i, i) += 0.5 * prior_curvature(i) + lambda * normal(i, i) + 1e-300;
@@ -273,32 +322,41 @@ OrderFit RecordFit::refine(FitState s, const std::vector<bool>& active, bool sha
         unpack(trial_x, trial_state);
         const double trial_objective = evaluate(trial_state, nullptr, nullptr, &trial_rss, &trial_penalty);
         if (trial_objective < objective) {
-          gain = objective - trial_objective;
+          const double gain = objective - trial_objective;
           x = trial_x;
           s = trial_state;
-          objective = evaluate(s, &normal_jj, &jacobian_r, &rss, &penalty);  // the Jacobian at the new point
+          converged = gain < tolerance;
           lambda = std::max(lambda / 3.0, 1e-12);
           accepted = true;
+          if (converged && !(normal_matrix && all_free)) {
+            // The last step: its Jacobian would not be used (the final J^T J is asked for, or
+            // can be taken from the iterations, only when every parameter is free).
+            objective = trial_objective, rss = trial_rss, penalty = trial_penalty;
+          } else {
+            objective = evaluate(s, &normal_jj, &jacobian_r, &rss, &penalty);  // the Jacobian at the new point
+          }
           break;
         }
         lambda *= 4.0;
       }
-      // Converged when the objective (in units of sigma^2) no longer moves.
-      if (!accepted || gain < 1e-6 + 1e-12 * objective) break;
+      if (!accepted || converged) break;
     }
   }
+  const FitState unsorted = s;
   sort_atoms(s);
   fit.residual_v2 = rss;
   fit.penalty = penalty;
   fit.state = s;
-  if (normal_matrix && !s.atoms.empty()) {
+  if (normal_matrix && !s.atoms.empty() && all_free) {
+    fit.normal_matrix = sorted_normal_matrix(normal_jj, unsorted, s, per_atom);
+  } else if (normal_matrix && !s.atoms.empty()) {
     // J^T J over every free parameter of the whole fit: all atoms, and the shared ones.
     moving.resize(s.atoms.size());
     std::iota(moving.begin(), moving.end(), 0);
     shared = L.shared() > 0;
     p_count = moving.size() * per_atom + (shared ? L.shared() : 0);
     frozen.reset(m_count);
-    values.assign(moving.size(), AtomValues{});
+    values.resize(moving.size());
     Eigen::VectorXd unused_gradient;
     FitState final_state = fit.state;
     evaluate(final_state, &fit.normal_matrix, &unused_gradient, nullptr, nullptr);

@@ -66,6 +66,16 @@ class RecordFit {
   //! returns the whitened residual into `r`; `wunit` receives W M.
   double solve_linear(FitState& state, std::span<const double> unit, std::vector<double>& r, std::vector<double>& wunit) const;
 
+  //! Scratch of refine, kept between refits (a record's search makes hundreds): the atoms'
+  //! evaluations and the Jacobian (up to M x p doubles) were allocated, and their pages
+  //! faulted in, anew by each.
+  struct Workspace {
+    AtomSums frozen, sums;
+    std::vector<AtomValues> values;
+    std::vector<double> unit, wunit, residual;
+    std::vector<double> jacobian;  // M x p, column-major
+  };
+  Workspace work_;
   const RecordModel* model_;
   FitLayout layout_;
   const LoadPrior* loads_;
