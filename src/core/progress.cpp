@@ -103,7 +103,9 @@ void Progress::draw(bool final) {
     std::string line = label_ + " ";
     if (bar_width >= 5) {
       const int filled = static_cast<int>(fraction * bar_width);
-      line += "[" + std::string(static_cast<std::size_t>(filled), '#') + std::string(static_cast<std::size_t>(bar_width - filled), ' ') + "] ";
+      // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, its bug 105329) on
+      // "literal" + std::string temporaries.
+      line.append("[").append(static_cast<std::size_t>(filled), '#').append(static_cast<std::size_t>(bar_width - filled), ' ').append("] ");
     }
     line += text + status;
     // \033[K clears what a longer previous line left behind.

@@ -99,8 +99,11 @@ std::string id_ranges(const std::vector<std::uint64_t>& ids, std::size_t limit) 
     std::size_t j = i;
     while (j + 1 < ids.size() && ids[j + 1] == ids[j] + 1) ++j;
     if (ranges++ < limit) {
-      out += (out.empty() ? "" : ", ") + std::to_string(ids[i]);
-      if (j > i) out += "-" + std::to_string(ids[j]);
+      // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, its bug 105329) on
+      // "literal" + std::string temporaries.
+      if (!out.empty()) out += ", ";
+      out += std::to_string(ids[i]);
+      if (j > i) out.append("-").append(std::to_string(ids[j]));
     } else {
       left_out += j - i + 1;
     }
