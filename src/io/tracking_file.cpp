@@ -1,10 +1,28 @@
 #include "io/tracking_file.hpp"
 
+#include <cstdint>
+#include <type_traits>
+
 #include "core/hdf5_file.hpp"
 #include "io/output_vocabulary.hpp"
 #include "io/run_file.hpp"
 
 namespace stengmc {
+
+namespace {
+
+//! One member of every row, as a dataset's values: a table of structs written column by column
+//! (indices and counts as 64-bit integers, the files' integer type).
+template <class Row, class Member>
+auto column(const std::vector<Row>& rows, Member Row::*member) {
+  using Value = std::conditional_t<std::is_integral_v<Member>, std::int64_t, Member>;
+  std::vector<Value> values;
+  values.reserve(rows.size());
+  for (const Row& row : rows) values.push_back(static_cast<Value>(row.*member));
+  return values;
+}
+
+}  // namespace
 
 void write_tracking_file(const std::string& path, const TrackingFileContext& context, const TrackingResult& r) {
   Hdf5Writer f(path, describe_output);
@@ -29,14 +47,10 @@ void write_tracking_file(const std::string& path, const TrackingFileContext& con
   f.attribute("/", "naive_threshold", context.naive_threshold);
   f.attribute("/", "seconds", r.seconds);
 
-  std::vector<double> centre, start, floor;
-  for (const TrackWindow& w : r.windows) {
-    centre.push_back(w.centre_s);
-    start.push_back(w.start_s);
-  }
+  std::vector<double> floor;
   for (const WindowLines& w : r.window_lines) floor.push_back(w.floor_v);
-  f.write("/tracking/window_time", centre);
-  f.write("/tracking/window_start", start);
+  f.write("/tracking/window_time", column(r.windows, &TrackWindow::centre_s));
+  f.write("/tracking/window_start", column(r.windows, &TrackWindow::start_s));
   f.write("/tracking/window_mean", r.window_mean_v);
   f.write("/tracking/noise_floor", floor);
   f.write("/tracking/count", r.count);
@@ -56,56 +70,27 @@ void write_tracking_file(const std::string& path, const TrackingFileContext& con
   f.write_with_gaps("/tracking/frequency_high", r.frequency_high, nw);
 
   std::vector<std::string> kind;
-  std::vector<double> time, low, high;
-  std::vector<std::int64_t> event_track;
-  for (const TrackEvent& e : r.events) {
-    kind.emplace_back(track_event_name(e.kind));
-    time.push_back(e.time_s);
-    low.push_back(e.time_low_s);
-    high.push_back(e.time_high_s);
-    event_track.push_back(static_cast<std::int64_t>(e.track));
-  }
+  for (const TrackEvent& e : r.events) kind.emplace_back(track_event_name(e.kind));
   f.write("/tracking/events/kind", kind);
-  f.write("/tracking/events/time_s", time);
-  f.write("/tracking/events/time_low_s", low);
-  f.write("/tracking/events/time_high_s", high);
-  f.write("/tracking/events/track", event_track);
+  f.write("/tracking/events/time_s", column(r.events, &TrackEvent::time_s));
+  f.write("/tracking/events/time_low_s", column(r.events, &TrackEvent::time_low_s));
+  f.write("/tracking/events/time_high_s", column(r.events, &TrackEvent::time_high_s));
+  f.write("/tracking/events/track", column(r.events, &TrackEvent::track));
 
-  std::vector<std::int64_t> segment_track, segment_windows;
-  std::vector<double> s_start, s_end, s_k, s_low, s_high, s_f;
-  for (const TrackSegment& s : r.segments) {
-    segment_track.push_back(static_cast<std::int64_t>(s.track));
-    segment_windows.push_back(static_cast<std::int64_t>(s.windows));
-    s_start.push_back(s.start_s);
-    s_end.push_back(s.end_s);
-    s_k.push_back(s.stiffness_n_per_m);
-    s_low.push_back(s.stiffness_low);
-    s_high.push_back(s.stiffness_high);
-    s_f.push_back(s.frequency_hz);
-  }
-  f.write("/tracking/segments/track", segment_track);
-  f.write("/tracking/segments/start_s", s_start);
-  f.write("/tracking/segments/end_s", s_end);
-  f.write("/tracking/segments/windows", segment_windows);
-  f.write("/tracking/segments/stiffness_n_per_m", s_k);
-  f.write("/tracking/segments/stiffness_low", s_low);
-  f.write("/tracking/segments/stiffness_high", s_high);
-  f.write("/tracking/segments/frequency_hz", s_f);
+  f.write("/tracking/segments/track", column(r.segments, &TrackSegment::track));
+  f.write("/tracking/segments/start_s", column(r.segments, &TrackSegment::start_s));
+  f.write("/tracking/segments/end_s", column(r.segments, &TrackSegment::end_s));
+  f.write("/tracking/segments/windows", column(r.segments, &TrackSegment::windows));
+  f.write("/tracking/segments/stiffness_n_per_m", column(r.segments, &TrackSegment::stiffness_n_per_m));
+  f.write("/tracking/segments/stiffness_low", column(r.segments, &TrackSegment::stiffness_low));
+  f.write("/tracking/segments/stiffness_high", column(r.segments, &TrackSegment::stiffness_high));
+  f.write("/tracking/segments/frequency_hz", column(r.segments, &TrackSegment::frequency_hz));
 
-  std::vector<std::int64_t> wear_track, wear_pieces;
-  std::vector<double> w_rate, w_low, w_high;
-  for (const TrackWear& w : r.wear) {
-    wear_track.push_back(static_cast<std::int64_t>(w.track));
-    wear_pieces.push_back(static_cast<std::int64_t>(w.pieces));
-    w_rate.push_back(w.rate_per_ms);
-    w_low.push_back(w.rate_low);
-    w_high.push_back(w.rate_high);
-  }
-  f.write("/tracking/wear/track", wear_track);
-  f.write("/tracking/wear/wear_rate_per_ms", w_rate);
-  f.write("/tracking/wear/wear_rate_low", w_low);
-  f.write("/tracking/wear/wear_rate_high", w_high);
-  f.write("/tracking/wear/pieces", wear_pieces);
+  f.write("/tracking/wear/track", column(r.wear, &TrackWear::track));
+  f.write("/tracking/wear/wear_rate_per_ms", column(r.wear, &TrackWear::rate_per_ms));
+  f.write("/tracking/wear/wear_rate_low", column(r.wear, &TrackWear::rate_low));
+  f.write("/tracking/wear/wear_rate_high", column(r.wear, &TrackWear::rate_high));
+  f.write("/tracking/wear/pieces", column(r.wear, &TrackWear::pieces));
 
   std::vector<std::int64_t> line_window, detected;
   std::vector<double> lf, lse, la, lz;
