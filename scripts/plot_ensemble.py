@@ -33,7 +33,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from figure_style import log_axis, unit as fixed_unit  # noqa: E402
-from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figure, use_output_options  # noqa: E402
+from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figures, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
@@ -656,13 +656,7 @@ def figures(path):
 
 def plot_ensemble(path):
     """Writes the figures of `path` beside it; returns their names."""
-    written = []
-    for out, fig in figures(path):
-        save_figure(fig, out)
-        plt.close(fig)
-        print(f"figure: {out}")
-        written.append(out)
-    return written
+    return save_figures(figures(path))
 
 
 def main():

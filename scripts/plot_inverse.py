@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
 from figure_style import log_axis  # noqa: E402
-from stengmc_h5 import add_output_options, attribute, figure_path, save_figure, use_output_options  # noqa: E402
+from stengmc_h5 import add_output_options, attribute, figure_path, save_figures, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 
 FILE_TYPE = "stengmc-inverse"
@@ -166,10 +166,7 @@ def figures(path, record=0):
 
 
 def plot_inverse(path, record=0):
-    for out, fig in figures(path, record):
-        save_figure(fig, out)
-        plt.close(fig)
-        print(out)
+    save_figures(figures(path, record))
 
 
 def main():

@@ -33,7 +33,7 @@ import plot_spectrum  # noqa: E402  (beside this script)
 import plot_surface  # noqa: E402  (beside this script)
 from figure_style import micro, unit  # noqa: E402
 from run_figure import run_figure  # noqa: E402
-from stengmc_h5 import add_output_options, attribute, figure_path, refuse, save_figure, use_output_options  # noqa: E402
+from stengmc_h5 import add_output_options, attribute, figure_path, refuse, save_figure, save_figures, use_output_options  # noqa: E402
 
 # Colour words a study title may use to name its curve, as matplotlib knows them.
 NAMED_COLOURS = ("blue", "red", "green", "orange", "gray", "purple")
@@ -78,10 +78,7 @@ def figures(path):
 
 def plot_run(path):
     """Writes every figure of `path` beside it (plot_run.py FILE, `stengmc plot FILE`)."""
-    for out, fig in figures(path):
-        save_figure(fig, out)
-        plt.close(fig)
-        print(f"figure: {out}")
+    save_figures(figures(path))
 
 
 def compare_figure(paths):

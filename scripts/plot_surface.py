@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figure, use_output_options  # noqa: E402
+from stengmc_h5 import add_output_options, array, attribute, figure_path, save_figures, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
@@ -417,12 +417,8 @@ def figures(path):
 
 def plot_surface(path):
     """Writes the figure of `path` beside it and returns its name; None when there is none."""
-    for out, fig in figures(path):
-        save_figure(fig, out)
-        plt.close(fig)
-        print(f"figure: {out}")
-        return out
-    return None
+    written = save_figures(figures(path))
+    return written[0] if written else None
 
 
 def main():

@@ -22,7 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from stengmc_h5 import add_output_options, attribute, figure_path, save_figure, use_output_options  # noqa: E402
+from stengmc_h5 import add_output_options, attribute, figure_path, save_figures, use_output_options  # noqa: E402
 from stengmc_h5 import open_checked as open_stengmc_file  # noqa: E402
 
 FILE_TYPE = "stengmc-tracking"
@@ -117,10 +117,7 @@ def figures(path):
 
 
 def plot_tracking(path):
-    for out, fig in figures(path):
-        save_figure(fig, out)
-        plt.close(fig)
-        print(out)
+    save_figures(figures(path))
 
 
 def main():

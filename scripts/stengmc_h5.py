@@ -72,6 +72,20 @@ def save_figure(fig, out):
         sys.exit(1)
 
 
+def save_figures(pairs):
+    """Writes each (output path, Figure) of `pairs` (a plot script's figures()) with
+    save_figure, closes it and prints its name; returns the names written."""
+    import matplotlib.pyplot as plt  # the caller has chosen the backend before this runs
+
+    written = []
+    for out, fig in pairs:
+        save_figure(fig, out)
+        plt.close(fig)
+        print(f"figure: {out}")
+        written.append(out)
+    return written
+
+
 def attribute(node, name, default=""):
     """An attribute, with HDF5 byte strings decoded."""
     value = node.attrs.get(name, default)
