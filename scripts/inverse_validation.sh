@@ -18,15 +18,23 @@
 #   scripts/inverse_validation.sh          both parts
 #   scripts/inverse_validation.sh ideal    issue 11's part only
 #   scripts/inverse_validation.sh real     issue 23's part only
+# Environment (defaults in brackets): BANK_RECORDS, records per bank [the device's
+# calibration_records, 2000]: a smaller bank calibrates the intervals more coarsely, but it
+# is what two cores can afford in a working session (a broadened record costs ~9 s);
+# STENGMC_BIN, the binary [build/src/stengmc]: pin a copy when the build may change under a
+# run of hours; OUT, the output folder [results/inverse].
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=./build/src/stengmc
-out=results/inverse
+bin=${STENGMC_BIN:-./build/src/stengmc}
+out=${OUT:-results/inverse}
 part=${1:-both}
 mkdir -p "$out"
+bank_records=()
+[[ -n ${BANK_RECORDS:-} ]] && bank_records=(--records "$BANK_RECORDS")
 
-# bank DEVICE.toml BANK.h5: calibrate unless the bank is there.
-bank() { [[ -f $2 ]] || "$bin" calibrate "$1" -o "$2"; }
+# bank DEVICE.toml BANK.h5: calibrate unless the bank is there (an interrupted calibration
+# resumes from its journal).
+bank() { [[ -f $2 ]] || "$bin" calibrate "$1" "${bank_records[@]}" -o "$2"; }
 # invert SIGNALS.h5 DEVICE.toml BANK.h5 OUT.h5: invert unless done.
 invert() { [[ -f $4 ]] || "$bin" invert "$1" --known "$2" --bank "$3" -o "$4" > "${4%.h5}.log"; }
 
