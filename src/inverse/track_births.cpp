@@ -1,0 +1,131 @@
+#include "inverse/track_births.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "inverse/event_ringing.hpp"
+#include "inverse/track_events.hpp"
+#include "inverse/track_lines.hpp"
+
+namespace stengmc {
+
+namespace {
+
+//! The first line of `t` heard in a window that starts after `birth_s` (earlier ones straddle
+//! the birth and under-read its amplitude), its amplitude extrapolated back to `birth_s` [V].
+std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow>& windows, double birth_s, double gamma) {
+  for (const TrackSighting& s : t.sightings) {
+    const double start = windows[s.window].start_s;
+    if (start >= birth_s) return s.line.amplitude_v * std::exp(gamma * (start - birth_s));
+  }
+  return std::nullopt;
+}
+
+//! Median frequency of the first three sightings [Hz].
+double first_frequency(const Track& t) {
+  std::vector<double> f;
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, t.sightings.size()); ++i) f.push_back(t.sightings[i].line.frequency_hz);
+  std::sort(f.begin(), f.end());
+  return f[f.size() / 2];
+}
+
+bool within(double measured, double predicted) {
+  return measured >= predicted / RINGING_TOLERANCE && measured <= predicted * RINGING_TOLERANCE;
+}
+
+//! Appends `born`'s sightings to `held` (which went silent before `born` began) and empties it.
+//! What `born` had found in itself (its release, its steps) is carried over. Returns the index
+//! of its first sighting in `held`.
+std::size_t absorb(Track& held, Track& born) {
+  const std::size_t first = held.sightings.size();
+  held.sightings.insert(held.sightings.end(), born.sightings.begin(), born.sightings.end());
+  for (const std::size_t s : born.step_sightings) held.step_sightings.push_back(first + s);
+  if (born.released) held.released = true, held.release_sighting = first + born.release_sighting;
+  born.sightings.clear();
+  return first;
+}
+
+}  // namespace
+
+void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
+                           const LinkSettings& link, double max_wear_per_ms) {
+  const double gamma = device.damping_rate_per_s();
+  const double record_start_s = windows.front().start_s;
+  // Births in time order: a track merged into a held one may itself take a later birth.
+  std::vector<std::size_t> order(tracks.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return tracks[a].sightings.front().window < tracks[b].sightings.front().window;
+  });
+  for (const std::size_t b : order) {
+    Track& born = tracks[b];
+    if (born.sightings.empty() || born.sightings.front().window == 0) continue;
+    const std::size_t first_window = born.sightings.front().window;
+    const double birth_s = burst_event(TrackEventKind::onset, first_window, windows, b).time_s;
+    const std::optional<double> heard = amplitude_at(born, windows, birth_s, gamma);
+    if (!heard) continue;
+    const double f = first_frequency(born);
+    const double k = stiffness_at(device, f);
+    const double onset_v = onset_ringing_v(device, k), release_v = release_ringing_v(device, k);
+    const double a = *heard;
+    const bool release_like = a >= release_v / RINGING_TOLERANCE && a >= std::sqrt(onset_v * release_v);
+    const bool weak = a < onset_v / RINGING_TOLERANCE;
+    if (!release_like && !weak) continue;  // an onset (or louder than one, not a release: left as before)
+
+    // The held tracks this line may belong to: silent for two windows or more before it began.
+    // Within the gate: the same line (its wear since moves it by at most half w_max per ms);
+    // within a step's reach: a step of it, when the ringing fits the jump.
+    std::optional<std::size_t> same, stepped;
+    double same_d = 0.0, step_d = 0.0;
+    for (std::size_t h = 0; h < tracks.size(); ++h) {
+      const Track& held = tracks[h];
+      if (h == b || held.sightings.empty() || held.released || held.sightings.size() < link.min_sightings ||
+          held.sightings.back().window + 2 > first_window)
+        continue;
+      const WindowLine& last = held.sightings.back().line;
+      const double elapsed = static_cast<double>(first_window - held.sightings.back().window);
+      const double drift = link.drift_per_window * elapsed;
+      const double d = std::abs(f - last.frequency_hz) / last.frequency_hz;
+      const double gate = link.gate_z * std::hypot(last.frequency_se_hz, born.sightings.front().line.frequency_se_hz) / last.frequency_hz;
+      if (d <= gate + drift) {
+        if (!same || d < same_d) same = h, same_d = d;
+        continue;
+      }
+      if (release_like || d > link.step_fraction + drift) continue;
+      // The stiffness before the step: the last heard, lowered since by at most w_max per ms.
+      const double k_last = last.stiffness_n_per_m;
+      const double dt_s = windows[first_window].start_s - windows[held.sightings.back().window].start_s;
+      const double k_worn = k_last * std::max(0.0, 1.0 - max_wear_per_ms * dt_s / 1e-3);
+      const double ring_a = step_ringing_v(device, k_last, k), ring_b = step_ringing_v(device, k_worn, k);
+      const bool straddles = (k_worn - k) * (k_last - k) <= 0.0;  // the step's size may be ~0
+      const double low = straddles ? 0.0 : std::min(ring_a, ring_b), high = std::max(ring_a, ring_b);
+      if (a >= low / RINGING_TOLERANCE && a <= high * RINGING_TOLERANCE && (!stepped || d < step_d)) stepped = h, step_d = d;
+    }
+
+    if (release_like) {
+      if (same) {
+        Track& held = tracks[*same];
+        held.release_sighting = absorb(held, born);
+        held.released = true;
+      } else {
+        // The release of an asperity in contact since before the record, never heard so far.
+        born.birth = TrackBirth::before_record;
+        born.released = true;
+        born.release_sighting = 0;
+      }
+    } else if (same) {
+      absorb(tracks[*same], born);
+    } else if (stepped) {
+      Track& held = tracks[*stepped];
+      held.step_sightings.push_back(absorb(held, born));
+    } else if (within(a * std::exp(gamma * (birth_s - record_start_s)), onset_ringing_v(device, k))) {
+      born.birth = TrackBirth::before_record;  // its onset's ringing at the record's start, heard late
+    } else {
+      born.birth = TrackBirth::unexplained;
+    }
+  }
+  std::erase_if(tracks, [](const Track& t) { return t.sightings.empty(); });
+}
+
+}  // namespace stengmc
