@@ -190,7 +190,7 @@ def true_frequency(k):
 
 
 def diagnose(d, path):
-    """Unexcited: what each false onset and step is. For the event's track, its first line after
+    """Unexcited: what each false onset, step and release is. For the event's track, its first line after
     the event (frequency, amplitude at the window's start extrapolated back to the event time
     along e^{-gamma t}) against the asperities in contact then: the nearest one, whether it had
     an event of another kind near, whether an earlier track already follows it (the line of a
@@ -210,7 +210,7 @@ def diagnose(d, path):
     truth = {"onset": [a["onset"] for a in A if a["onset"] > 0], "release": [a["release"] for a in A if math.isfinite(a["release"])],
              "step": [s[0] for a in A for s in a["steps"]]}
     classes = {}
-    for kind in ("onset", "step"):
+    for kind in ("onset", "step", "release"):
         found = [(x, tr) for x, kk, tr in zip(times, kinds, tracks) if kk == kind and not (kind == "onset" and x < 20e-6)]
         matched = set()
         pairs = sorted((abs(tt - x), i, j) for i, tt in enumerate(truth[kind]) for j, (x, _) in enumerate(found) if abs(tt - x) <= MATCH_S)
@@ -225,8 +225,12 @@ def diagnose(d, path):
             w = int(np.searchsorted(t, x - 5e-6))
             while w < len(t) and not np.isfinite(freq[tr][w]):
                 w += 1
-            if w >= len(t):
-                continue
+            if w >= len(t):  # (a release: the track's line is not given after it) its last line before
+                heard = np.where(np.isfinite(freq[tr]))[0]
+                if not len(heard):
+                    print("    false %-7s %7.1f us track %2d: never heard" % (kind, 1e6 * x, tr))
+                    continue
+                w = int(heard[-1])
             fl = freq[tr][w]
             sel = np.where((lw == w) & (np.abs(lf - fl) < 1.0))[0]
             amp = float(la[sel[0]]) * math.exp(gamma * max(start[w] - x, 0.0)) if len(sel) else float("nan")
@@ -239,7 +243,7 @@ def diagnose(d, path):
                 for name, e in [("onset", a["onset"]), ("release", a["release"])] + [("step", s[0]) for s in a["steps"]]:
                     if abs(e - x) <= MATCH_S and not (name == "onset" and e == 0):
                         other_event = name
-            earlier = [o for o in range(freq.shape[0]) if o != tr and np.isfinite(freq[o][:w]).any() and
+            earlier = [o for o in range(freq.shape[0]) if o != tr and np.isfinite(freq[o][max(0, w - 60):w]).any() and
                        abs(np.nanmedian(freq[o][max(0, w - 60):w]) / fl - 1) < 0.02] if w > 0 else []
             harmonic = any(abs(fl / (m * true_frequency(true_k(b, x))) - 1) < 0.01 for b in A if b["onset"] <= x < b["release"] for m in (2, 3))
             if harmonic and near > 0.02:
@@ -256,7 +260,7 @@ def diagnose(d, path):
                 what = "asperity silent, no track on it"
             classes[(kind, what)] = classes.get((kind, what), 0) + 1
             release_v = 1e6 * 80e-6 * 10e-6 * 0.28e-3 / math.sqrt(1e-12 * 1e-12 * (2 * math.pi * fl) ** 2)  # R sigma w F / sqrt(k m)
-            print("    false %-5s %7.1f us track %2d f %.4f MHz amp %.3g V (%.2f of onset's, %.2f of release's) nearest %.1f %% -> %s" % (
+            print("    false %-7s %7.1f us track %2d f %.4f MHz amp %.3g V (%.2f of onset's, %.2f of release's) nearest %.1f %% -> %s" % (
                 kind, 1e6 * x, tr, fl / 1e6, amp, amp / onset_v, amp / release_v, 100 * near, what))
     return classes
 
@@ -267,7 +271,7 @@ def main():
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--out", default="results/track_validation")
     parser.add_argument("--binary", default="build/src/stengmc")
-    parser.add_argument("--diagnose", action="store_true", help="also print what each false unexcited onset and step is")
+    parser.add_argument("--diagnose", action="store_true", help="also print what each false unexcited event is")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rng = np.random.default_rng(args.seed)
@@ -333,7 +337,7 @@ def main():
     if diagnosed:
         print("\nFalse unexcited events by what they are (--diagnose):")
         for (kind, what), n in sorted(diagnosed.items()):
-            print("  %-5s %-45s %d" % (kind, what, n))
+            print("  %-7s %-45s %d" % (kind, what, n))
 
 
 if __name__ == "__main__":

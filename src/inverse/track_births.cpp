@@ -12,14 +12,28 @@ namespace stengmc {
 
 namespace {
 
-//! The first line of `t` heard in a window that starts after `birth_s` (earlier ones straddle
-//! the birth and under-read its amplitude), its amplitude extrapolated back to `birth_s` [V].
-std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow>& windows, double birth_s, double gamma) {
+//! The amplitude at burst `e` (its estimate) of the first line of `t` heard in a window that
+//! starts after the burst's latest time (earlier ones may straddle it and under-read it),
+//! extrapolated back along e^{-gamma t} [V].
+std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow>& windows, const TrackEvent& e, double gamma) {
   for (const TrackSighting& s : t.sightings) {
     const double start = windows[s.window].start_s;
-    if (start >= birth_s) return s.line.amplitude_v * std::exp(gamma * (start - birth_s));
+    if (start >= e.time_high_s) return s.line.amplitude_v * std::exp(gamma * (start - e.time_s));
   }
   return std::nullopt;
+}
+
+//! Whether `t`, born by a burst of matched-filter SNR `snr` at `birth_s`, is heard about as long
+//! as a free ringing stays above the detection threshold `threshold`: ln(snr / threshold) / gamma
+//! (~90 us from z = 500). At least half of that (a neighbour's line may take its last
+//! windows): a line heard only in the windows that straddle someone's onset is the fit's
+//! artefact of a partial ringing, not a ringing of its own.
+bool heard_as_long_as_it_rings(const Track& t, const std::vector<TrackWindow>& windows, double birth_s, double gamma,
+                               double threshold) {
+  double snr = 0.0;
+  for (const TrackSighting& s : t.sightings) snr = std::max(snr, s.line.snr);
+  const double rings_s = std::log(std::max(1.0, snr / threshold)) / gamma;
+  return windows[t.sightings.back().window].end_s - birth_s >= 0.5 * rings_s;
 }
 
 //! Median frequency of the first three sightings [Hz].
@@ -46,10 +60,58 @@ std::size_t absorb(Track& held, Track& born) {
   return first;
 }
 
+//! Marks `t` released at sighting `i`: a released asperity's line is its frozen stiffness, so
+//! no step of it is heard afterwards (a linker's step there was the ringing-down's wander).
+void release_at(Track& t, std::size_t i) {
+  t.released = true;
+  t.release_sighting = i;
+  std::erase_if(t.step_sightings, [&](std::size_t s) { return s >= i; });
+}
+
 }  // namespace
 
+void confirm_releases(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
+                      std::size_t lag) {
+  const double gamma = device.damping_rate_per_s();
+  const std::size_t count = tracks.size();
+  for (std::size_t t = 0; t < count; ++t) {
+    if (!tracks[t].released || tracks[t].release_sighting == 0) continue;
+    const std::size_t r = tracks[t].release_sighting;
+    const TrackEvent burst = burst_event(TrackEventKind::release, tracks[t].sightings[r].window, windows, t);
+    Track after;
+    after.sightings.assign(tracks[t].sightings.begin() + static_cast<std::ptrdiff_t>(r), tracks[t].sightings.end());
+    // (A burst heard in no window clear of its start is no release: a released asperity rings
+    // from its full deflection for ~100 us.)
+    const double heard = amplitude_at(after, windows, burst, gamma).value_or(0.0);
+    const double k = stiffness_at(device, first_frequency(after));
+    const double onset_v = onset_ringing_v(device, k), release_v = release_ringing_v(device, k);
+    if (heard >= release_v / RINGING_TOLERANCE && heard >= std::sqrt(onset_v * release_v)) continue;  // a release
+    Track& track = tracks[t];
+    track.released = false;
+    track.release_sighting = 0;
+    if (within(heard, onset_v)) {
+      // As loud as an onset: a new asperity on the held one's line. Its own track, from the burst
+      // and the windows just before it that straddle its start (the linker gave them to the
+      // held track as its line re-heard, not yet loud enough for a burst).
+      std::size_t from = r;
+      while (from > 0 && r - from < lag && tracks[t].sightings[from].window - tracks[t].sightings[from - 1].window == 1) --from;
+      if (from > 0 && tracks[t].sightings[from].window - tracks[t].sightings[from - 1].window == 1) from = r;  // heard all along: no straddle
+      after.sightings.assign(tracks[t].sightings.begin() + static_cast<std::ptrdiff_t>(from), tracks[t].sightings.end());
+      after.onset_level = 0.0;
+      for (std::size_t i = 0; i < std::min<std::size_t>(3, after.sightings.size()); ++i)
+        after.onset_level = std::max(after.onset_level, after.sightings[i].line.snr);
+      for (const std::size_t s : track.step_sightings)
+        if (s > from) after.step_sightings.push_back(s - from);
+      std::erase_if(track.step_sightings, [&](std::size_t s) { return s >= from; });
+      track.sightings.resize(from);
+      tracks.push_back(std::move(after));
+    }
+    // (Weaker: the held line re-heard, which the linker took for a burst.)
+  }
+}
+
 void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
-                           const LinkSettings& link, double max_wear_per_ms) {
+                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr) {
   const double gamma = device.damping_rate_per_s();
   const double record_start_s = windows.front().start_s;
   // Births in time order: a track merged into a held one may itself take a later birth.
@@ -62,8 +124,9 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
     Track& born = tracks[b];
     if (born.sightings.empty() || born.sightings.front().window == 0) continue;
     const std::size_t first_window = born.sightings.front().window;
-    const double birth_s = burst_event(TrackEventKind::onset, first_window, windows, b).time_s;
-    const std::optional<double> heard = amplitude_at(born, windows, birth_s, gamma);
+    const TrackEvent birth = burst_event(TrackEventKind::onset, first_window, windows, b);
+    const double birth_s = birth.time_s;
+    const std::optional<double> heard = amplitude_at(born, windows, birth, gamma);
     if (!heard) continue;
     const double f = first_frequency(born);
     const double k = stiffness_at(device, f);
@@ -71,7 +134,11 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
     const double a = *heard;
     const bool release_like = a >= release_v / RINGING_TOLERANCE && a >= std::sqrt(onset_v * release_v);
     const bool weak = a < onset_v / RINGING_TOLERANCE;
-    if (!release_like && !weak) continue;  // an onset (or louder than one, not a release: left as before)
+    if (!release_like && !weak) {
+      // An onset (or louder than one, not a release: left as before), when it rings as long as one.
+      if (!heard_as_long_as_it_rings(born, windows, birth_s, gamma, threshold_snr)) born.birth = TrackBirth::unexplained;
+      continue;
+    }
 
     // The held tracks this line may belong to: silent for two windows or more before it began.
     // Within the gate: the same line (its wear since moves it by at most half w_max per ms);
@@ -106,13 +173,11 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
     if (release_like) {
       if (same) {
         Track& held = tracks[*same];
-        held.release_sighting = absorb(held, born);
-        held.released = true;
+        release_at(held, absorb(held, born));
       } else {
         // The release of an asperity in contact since before the record, never heard so far.
         born.birth = TrackBirth::before_record;
-        born.released = true;
-        born.release_sighting = 0;
+        release_at(born, 0);
       }
     } else if (same) {
       absorb(tracks[*same], born);

@@ -9,7 +9,9 @@
 //! e^{-gamma t}:
 //!  - as loud as a release: a held track's release (its line within the gate), or the release
 //!    of an asperity never heard before (in contact from the record's start);
-//!  - as loud as an onset: an onset, as before;
+//!  - as loud as an onset: an onset, as before, when it is heard about as long as a free
+//!    ringing of its level stays above the threshold (else the fit's artefact of a partial
+//!    ringing in the windows that straddle someone's onset: unexplained, below);
 //!  - much weaker than an onset: no onset. A held track's line re-heard (within the gate), a
 //!    step of a held track within a step's reach when the ringing fits the jump, a ringing that
 //!    began at the record's start (its amplitude there that of an onset: the crowded start
@@ -29,10 +31,18 @@ namespace stengmc {
 //! neighbour has its window amplitude biased by up to ~30 %: 1.4 x 1.3 ~ 2.
 inline constexpr double RINGING_TOLERANCE = 2.0;
 
+//! Unexcited: a held track's release is a burst as loud as a release (R sigma w F / sqrt(k m),
+//! within RINGING_TOLERANCE, and nearer it than an onset's). A burst as loud as an onset on its
+//! line is a new asperity's onset there: split off as a track of its own; a weaker one is the
+//! held line re-heard: the track is not released. `lag`: windows that overlap one.
+void confirm_releases(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
+                      std::size_t lag);
+
 //! Re-reads the births of `tracks` (unexcited) as above: merges re-heard lines, steps and
 //! releases into the held tracks they belong to (the merged track left empty and dropped),
-//! and sets each remaining track's `birth`. `link` gives the gate and the wear drift.
+//! and sets each remaining track's `birth`. `link` gives the gate and the wear drift;
+//! `threshold_snr` is the detection threshold.
 void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
-                           const LinkSettings& link, double max_wear_per_ms);
+                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr);
 
 }  // namespace stengmc
