@@ -129,6 +129,10 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
     const std::optional<double> heard = amplitude_at(born, windows, birth, gamma);
     if (!heard) continue;
     const double f = first_frequency(born);
+    // The error of its clearest first line (the first may straddle the birth and be poor).
+    double born_se_hz = born.sightings.front().line.frequency_se_hz, born_snr = 0.0;
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, born.sightings.size()); ++i)
+      if (born.sightings[i].line.snr > born_snr) born_snr = born.sightings[i].line.snr, born_se_hz = born.sightings[i].line.frequency_se_hz;
     const double k = stiffness_at(device, f);
     const double onset_v = onset_ringing_v(device, k), release_v = release_ringing_v(device, k);
     const double a = *heard;
@@ -150,11 +154,15 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
       if (h == b || held.sightings.empty() || held.released || held.sightings.size() < link.min_sightings ||
           held.sightings.back().window + 2 > first_window)
         continue;
-      const WindowLine& last = held.sightings.back().line;
+      // Its last clear line (z >= reacquire_snr): a fading ringing's last lines have wide errors,
+      // which would open the gate to a neighbour's line.
+      const auto clear = std::find_if(held.sightings.rbegin(), held.sightings.rend(),
+                                      [&](const TrackSighting& x) { return x.line.snr >= link.reacquire_snr; });
+      const WindowLine& last = clear == held.sightings.rend() ? held.sightings.back().line : clear->line;
       const double elapsed = static_cast<double>(first_window - held.sightings.back().window);
       const double drift = link.drift_per_window * elapsed;
       const double d = std::abs(f - last.frequency_hz) / last.frequency_hz;
-      const double gate = link.gate_z * std::hypot(last.frequency_se_hz, born.sightings.front().line.frequency_se_hz) / last.frequency_hz;
+      const double gate = link.gate_z * std::hypot(last.frequency_se_hz, born_se_hz) / last.frequency_hz;
       if (d <= gate + drift) {
         if (!same || d < same_d) same = h, same_d = d;
         continue;
