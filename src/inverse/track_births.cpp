@@ -12,15 +12,22 @@ namespace stengmc {
 
 namespace {
 
-//! The amplitude at burst `e` (its estimate) of the first line of `t` heard in a window that
-//! starts after the burst's latest time (earlier ones may straddle it and under-read it),
-//! extrapolated back along e^{-gamma t} [V].
+//! The amplitude at burst `e` (its estimate) of the ringing of `t`, extrapolated back along
+//! e^{-gamma t} from its lines in windows that start after the burst's latest time (earlier
+//! ones may straddle it and under-read it): the median over the first four such lines (~20 us).
+//! A free ringing decays exactly so, and each window gives the same initial amplitude but for
+//! a neighbour's beat, which in a crowded band moves a window's amplitude by up to 2x [V].
 std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow>& windows, const TrackEvent& e, double gamma) {
+  constexpr std::size_t LINES = 4;
+  std::vector<double> a;
   for (const TrackSighting& s : t.sightings) {
     const double start = windows[s.window].start_s;
-    if (start >= e.time_high_s) return s.line.amplitude_v * std::exp(gamma * (start - e.time_s));
+    if (start >= e.time_high_s) a.push_back(s.line.amplitude_v * std::exp(gamma * (start - e.time_s)));
+    if (a.size() == LINES) break;
   }
-  return std::nullopt;
+  if (a.empty()) return std::nullopt;
+  std::sort(a.begin(), a.end());
+  return a.size() % 2 == 1 ? a[a.size() / 2] : 0.5 * (a[a.size() / 2 - 1] + a[a.size() / 2]);
 }
 
 //! Whether `t`, born by a burst of matched-filter SNR `snr` at `birth_s`, is heard about as long
