@@ -183,16 +183,100 @@ def evaluate(d, path):
     return r
 
 
+def true_frequency(k):
+    """Damped natural frequency of an asperity of stiffness k with the DEVICE_KEYS m, c [Hz]."""
+    m, c = 1e-12, 1e-7
+    return math.sqrt(max(k / m - (c / (2 * m)) ** 2, 0.0)) / (2 * math.pi)
+
+
+def diagnose(d, path):
+    """Unexcited: what each false onset, step and release is. For the event's track, its first line after
+    the event (frequency, amplitude at the window's start extrapolated back to the event time
+    along e^{-gamma t}) against the asperities in contact then: the nearest one, whether it had
+    an event of another kind near, whether an earlier track already follows it (the line of a
+    held track re-heard), whether the line is 2x or 3x another asperity's (a harmonic). Prints
+    one line per false event; returns the classes counted."""
+    f = h5py.File(path, "r")
+    g = f["tracking"]
+    t, start = g["window_time"][()], g["window_start"][()]
+    freq = g["frequency_hz"][()]
+    kinds = [x.decode() if isinstance(x, bytes) else x for x in g["events/kind"][()]]
+    times, tracks = g["events/time_s"][()], g["events/track"][()]
+    lw, lf, la = g["lines/window"][()], g["lines/frequency_hz"][()], g["lines/amplitude_v"][()]
+    vb = d["vb"]
+    gamma = 1e-7 / 2e-12
+    onset_v = 1e6 * 80e-6 * 10e-6 * vb  # R sigma w v_b (docs/tracking.md, event amplitudes)
+    A = d["asperities"]
+    truth = {"onset": [a["onset"] for a in A if a["onset"] > 0], "release": [a["release"] for a in A if math.isfinite(a["release"])],
+             "step": [s[0] for a in A for s in a["steps"]]}
+    classes = {}
+    for kind in ("onset", "step", "release"):
+        found = [(x, tr) for x, kk, tr in zip(times, kinds, tracks) if kk == kind and not (kind == "onset" and x < 20e-6)]
+        matched = set()
+        pairs = sorted((abs(tt - x), i, j) for i, tt in enumerate(truth[kind]) for j, (x, _) in enumerate(found) if abs(tt - x) <= MATCH_S)
+        used_t = set()
+        for e, i, j in pairs:
+            if i not in used_t and j not in matched:
+                used_t.add(i)
+                matched.add(j)
+        for j, (x, tr) in enumerate(found):
+            if j in matched:
+                continue
+            w = int(np.searchsorted(t, x - 5e-6))
+            while w < len(t) and not np.isfinite(freq[tr][w]):
+                w += 1
+            if w >= len(t):  # (a release: the track's line is not given after it) its last line before
+                heard = np.where(np.isfinite(freq[tr]))[0]
+                if not len(heard):
+                    print("    false %-7s %7.1f us track %2d: never heard" % (kind, 1e6 * x, tr))
+                    continue
+                w = int(heard[-1])
+            fl = freq[tr][w]
+            sel = np.where((lw == w) & (np.abs(lf - fl) < 1.0))[0]
+            amp = float(la[sel[0]]) * math.exp(gamma * max(start[w] - x, 0.0)) if len(sel) else float("nan")
+            # (an asperity released just before still rings: its release is heard after it)
+            live = [(abs(true_frequency(true_k(a, x)) / fl - 1), n) for n, a in enumerate(A) if a["onset"] <= x < a["release"] + MATCH_S]
+            near, n = min(live) if live else (1.0, -1)
+            a = A[n] if n >= 0 else None
+            other_event = None
+            if a is not None:
+                for name, e in [("onset", a["onset"]), ("release", a["release"])] + [("step", s[0]) for s in a["steps"]]:
+                    if abs(e - x) <= MATCH_S and not (name == "onset" and e == 0):
+                        other_event = name
+            earlier = [o for o in range(freq.shape[0]) if o != tr and np.isfinite(freq[o][max(0, w - 60):w]).any() and
+                       abs(np.nanmedian(freq[o][max(0, w - 60):w]) / fl - 1) < 0.02] if w > 0 else []
+            harmonic = any(abs(fl / (m * true_frequency(true_k(b, x))) - 1) < 0.01 for b in A if b["onset"] <= x < b["release"] for m in (2, 3))
+            if harmonic and near > 0.02:
+                what = "harmonic"
+            elif near > 0.02:
+                what = "no asperity within 2 %"
+            elif other_event:
+                what = "the asperity's %s, mistaken" % other_event
+            elif x < 150e-6 and not earlier:
+                what = "ringing since t = 0, first heard now"
+            elif earlier:
+                what = "held track re-heard (an earlier track on it)"
+            else:
+                what = "asperity silent, no track on it"
+            classes[(kind, what)] = classes.get((kind, what), 0) + 1
+            release_v = 1e6 * 80e-6 * 10e-6 * 0.28e-3 / math.sqrt(1e-12 * 1e-12 * (2 * math.pi * fl) ** 2)  # R sigma w F / sqrt(k m)
+            print("    false %-7s %7.1f us track %2d f %.4f MHz amp %.3g V (%.2f of onset's, %.2f of release's) nearest %.1f %% -> %s" % (
+                kind, 1e6 * x, tr, fl / 1e6, amp, amp / onset_v, amp / release_v, 100 * near, what))
+    return classes
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("n", type=int)
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--out", default="results/track_validation")
     parser.add_argument("--binary", default="build/src/stengmc")
+    parser.add_argument("--diagnose", action="store_true", help="also print what each false unexcited event is")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rng = np.random.default_rng(args.seed)
     totals = {}
+    diagnosed = {}
     print("%3s %-9s %4s %5s  %-13s %-13s %-13s %-9s %-9s %-9s %-15s %6s" % (
         "rec", "regime", "n0", "vb", "onsets f/t(x)", "releases", "steps", "n exact", "n cover", "naive", "k 2% / cover", "track s"))
     for i in range(args.n):
@@ -214,6 +298,9 @@ def main():
             continue
         r = evaluate(d, stem + "_track.h5")
         regime = "excited" if excited else "unexcited"
+        if args.diagnose and not excited:
+            for key, value in diagnose(d, stem + "_track.h5").items():
+                diagnosed[key] = diagnosed.get(key, 0) + value
         tot = totals.setdefault(regime, {})
         for key, value in r.items():
             if key == "seconds":
@@ -247,6 +334,10 @@ def main():
         print("    k within 2 %%                %d of %d assigned in-contact windows (%.0f %%); 90 %% interval covers %.0f %%" % (
             w, n, 100.0 * w / max(n, 1), 100.0 * c / max(n, 1)))
         print("    tracking time              median %.2f s per 1 ms record (10^5 samples, 2 threads)" % float(np.median(tot["seconds"])))
+    if diagnosed:
+        print("\nFalse unexcited events by what they are (--diagnose):")
+        for (kind, what), n in sorted(diagnosed.items()):
+            print("  %-7s %-45s %d" % (kind, what, n))
 
 
 if __name__ == "__main__":

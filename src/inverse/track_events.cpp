@@ -26,7 +26,10 @@ std::vector<TrackEvent> track_events(const std::vector<Track>& tracks, const std
   std::vector<TrackEvent> events;
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     const Track& track = tracks[t];
-    events.push_back(burst_event(TrackEventKind::onset, track.sightings.front().window, windows, t));
+    // (Unexcited: an asperity in contact from before the record has its onset at its start; a
+    // line no event explains has none: inverse/track_births.hpp.)
+    if (track.birth == TrackBirth::before_record) events.push_back(burst_event(TrackEventKind::onset, 0, windows, t));
+    else if (track.birth == TrackBirth::onset) events.push_back(burst_event(TrackEventKind::onset, track.sightings.front().window, windows, t));
     for (const StepMark& m : track.steps) events.push_back({TrackEventKind::step, m.time_s, m.low_s, m.high_s, t});
     if (track.released && excited) {
       // Its free ring-down: the first window after the release is the first of it, or one

@@ -49,6 +49,11 @@ bool free_ringing(const WindowLine& l, const LinkSettings& s) {
   return std::abs(l.damping_per_s - s.free_damping_per_s) <= 0.6 * s.free_damping_per_s;
 }
 
+//! Unexcited: a step rings no louder than the belt lets it (max_step_ringing_v; 0: no check).
+bool within_step_ringing(const WindowLine& l, const LinkSettings& s) {
+  return s.max_step_ringing_v <= 0.0 || l.amplitude_v <= s.max_step_ringing_v;
+}
+
 void add_sighting(LiveTrack& t, std::size_t window, const WindowLine& line) {
   t.track.sightings.push_back({window, line});
   if (t.track.sightings.size() <= 3) t.track.onset_level = std::max(t.track.onset_level, line.snr);
@@ -65,6 +70,7 @@ void merge_steps_of_silent_tracks(std::vector<LiveTrack>& tracks, const LinkSett
     if (born.sightings.size() < s.min_sightings || born.sightings.front().window == 0) continue;
     const auto clear = std::find_if(born.sightings.begin(), born.sightings.end(),
                                     [&](const TrackSighting& x) { return x.line.snr >= s.reacquire_snr && free_ringing(x.line, s); });
+    if (clear != born.sightings.end() && !within_step_ringing(clear->line, s)) continue;
     if (clear == born.sightings.end()) continue;
     const std::size_t start = born.sightings.front().window;
     std::size_t best = tracks.size();
@@ -264,7 +270,7 @@ std::vector<Track> link_tracks(const std::vector<WindowLines>& windows, const Li
         for (std::size_t c = 0; c < free_lines.size(); ++c) {
           const WindowLine& l = *lines[free_lines[c]];
           const double rel = std::abs(l.frequency_hz - f0) / f0;
-          if (l.snr >= s.reacquire_snr && (!s.hold_silent || free_ringing(l, s)) &&
+          if (l.snr >= s.reacquire_snr && (!s.hold_silent || (free_ringing(l, s) && within_step_ringing(l, s))) &&
               rel <= s.step_fraction + s.drift_per_window * elapsed)
             step_cost(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rel;
         }

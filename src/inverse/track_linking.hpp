@@ -45,6 +45,11 @@ struct LinkSettings {
   double min_duty = 0.5;
   //! c / 2m of the device: the damping of a free ringing [1/s].
   double free_damping_per_s = 0.0;
+  //! Unexcited (> 0): the loudest a stiffness step can make a line ring at the window's start,
+  //! the belt's limit R sigma w v_b (inverse/event_ringing.hpp) times the amplitude tolerance
+  //! (inverse/track_births.hpp) [V]. A louder line within a step's reach of a held track is no
+  //! step of it (a release rings 2-12 x louder than the limit in the validation's prior).
+  double max_step_ringing_v = 0.0;
   //! Excited (> 0): windows that share samples with one (lag). Tracks that take turns on one
   //! line, or meet within step_fraction of each other (a step moves a driven line out of the
   //! gate at once), are merged, their lines compared over this many windows where they meet.
@@ -66,6 +71,13 @@ struct StepMark {
   double time_s = 0.0, low_s = 0.0, high_s = 0.0;  //!< estimate and interval [s]
 };
 
+//! Unexcited: what a track's first line is, judged by how strongly it rings
+//! (inverse/track_births.hpp). An onset starts the track; an asperity in contact from before
+//! the record (a ringing since its start first resolved now, or the release of an asperity
+//! never heard) is in contact from the record's start; a line no event explains is counted
+//! only while it is heard (it is not held).
+enum class TrackBirth { onset, before_record, unexplained };
+
 struct Track {
   std::vector<TrackSighting> sightings;   //!< in window order
   std::vector<std::size_t> step_sightings;  //!< sightings that start a new stiffness (a step before them)
@@ -74,6 +86,7 @@ struct Track {
   bool released = false;                  //!< its release was heard (burst)
   bool ended = false;                     //!< died (missed > G) before the record's end
   double onset_level = 0.0;               //!< largest snr of its first three sightings
+  TrackBirth birth = TrackBirth::onset;   //!< unexcited: what its first line is (track_births.hpp)
 };
 
 //! Excited regime: a track whose last sightings (at least three) are all a free ringing

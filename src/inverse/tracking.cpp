@@ -18,6 +18,8 @@
 #include "inverse/driven_steps.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/noise_level.hpp"
+#include "inverse/start_plateau.hpp"
+#include "inverse/track_births.hpp"
 #include "inverse/track_lines.hpp"
 #include "inverse/track_peaks.hpp"
 #include "inverse/track_steps.hpp"
@@ -260,7 +262,17 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   link.min_sightings = lag + 2;
   link.free_damping_per_s = device.damping_rate_per_s();
   link.step_overlap_windows = r.excited ? lag : 0;
+  // Unexcited, the loudest a step rings is the belt's limit (inverse/event_ringing.hpp): a
+  // louder line near a held track is no step of it.
+  if (!r.excited) link.max_step_ringing_v = RINGING_TOLERANCE * device.voltage_scale_v();
   r.tracks = link_tracks(lines, link);
+  // Unexcited, each release burst and each new track's first line is judged by how strongly it
+  // rings: an onset, a release, a held track re-heard or stepped, or an asperity there before
+  // the record (inverse/track_births.hpp).
+  if (!r.excited) {
+    confirm_releases(device, r.tracks, r.windows, lag);
+    classify_track_births(device, r.tracks, r.windows, link, settings.max_wear_per_ms, settings.threshold_snr);
+  }
   if (r.excited) {
     // An excited line wanders between windows by more than its Cramer-Rao error (and, near
     // stick, more than its Lorentzian width): the gate is set from how much the first pass's
@@ -315,8 +327,15 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   r.count.assign(nw, 0.0);
   std::vector<std::vector<double>> uncertain(nw);
   std::vector<std::set<double>> linked(nw);
+  // Unexcited: the asperities in contact at the record's start, counted by its plateau
+  // (inverse/start_plateau.hpp).
+  // (0: not read.)
+  const std::size_t at_start = r.excited || nw == 0 ? 0 : asperities_at_start(device, grid, v).value_or(0);
   for (std::size_t t = 0; t < nt; ++t) {
     const Track& track = r.tracks[t];
+    // A line no event explains is an asperity already in contact heard again: with the start's
+    // count known it is among those, else it is counted while it is heard.
+    const bool counted = !(at_start > 0 && track.birth == TrackBirth::unexplained);
     double release_s = std::numeric_limits<double>::infinity();
     for (const TrackEvent& e : r.events)
       if (e.track == t && e.kind == TrackEventKind::release) release_s = e.time_s;
@@ -330,9 +349,13 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     const WindowLine* last = nullptr;
     double last_time = 0.0;
     const std::size_t heard_until = track.released ? track.release_sighting : track.sightings.size();
-    for (std::size_t w = track.sightings.front().window; w < nw; ++w) {
+    // In contact from its onset; from the record's start when it was there before (unexcited);
+    // a line no event explains only while it is heard (it is not held: track_births.hpp).
+    const std::size_t first_window = track.birth == TrackBirth::before_record ? 0 : track.sightings.front().window;
+    const std::size_t last_window = track.birth == TrackBirth::unexplained ? track.sightings.back().window : nw - 1;
+    for (std::size_t w = first_window; w <= last_window; ++w) {
       const double centre = r.windows[w].centre_s;
-      if (centre > release_s && w > track.sightings.front().window) break;
+      if (centre > release_s && w > first_window) break;
       if (next < heard_until && track.sightings[next].window == w) {
         const WindowLine& seen = track.sightings[next].line;
         // Held afterwards: the last clear sighting (a fading ringing's last ones are the least
@@ -355,6 +378,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
         r.stiffness_low[t][w] = last->stiffness_low * std::max(0.0, 1.0 - wear);
         r.stiffness_high[t][w] = last->stiffness_high;
       }
+      if (!counted) continue;
       if (p >= 0.95) r.count[w] += 1.0;
       else uncertain[w].push_back(p);
     }
@@ -393,6 +417,19 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     const auto [low, high] = poisson_binomial_interval(uncertain[w]);
     r.count_low[w] = std::min(r.count[w], certain + static_cast<double>(low));
     r.count_high[w] = std::max(r.count[w], certain + static_cast<double>(high));
+  }
+  // Unexcited: the asperities in contact at the record's start are counted by its plateau
+  // (inverse/start_plateau.hpp); those no track accounts for at the first window were never
+  // heard (the crowded start rings them all at once) and are in contact throughout, as far as
+  // the record tells (a release heard later starts a track of its own, counted from the start).
+  if (at_start > 0) {
+    r.asperities_at_start = at_start;
+    const double unheard = std::max(0.0, static_cast<double>(at_start) - r.count[0]);
+    for (std::size_t w = 0; w < nw; ++w) {
+      r.count[w] += unheard;
+      r.count_low[w] += unheard;
+      r.count_high[w] += unheard;
+    }
   }
   r.window_lines = lines;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -43,6 +43,9 @@ struct TrackingResult {
   std::vector<std::vector<double>> stiffness, stiffness_low, stiffness_high;
   //! [track][window], NaN where the track's line was not heard (or after its release).
   std::vector<std::vector<double>> frequency, frequency_low, frequency_high;
+  //! Unexcited: asperities in contact at the record's start, from its plateau (0: not read;
+  //! inverse/start_plateau.hpp). Those no track accounts for are in the count throughout.
+  std::size_t asperities_at_start = 0;
   std::vector<double> error_inflation;      //!< per track: the factor its frequency errors were scaled by
   std::vector<WindowLines> window_lines;    //!< every window's lines, detected and grey
   std::vector<Track> tracks;

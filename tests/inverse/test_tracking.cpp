@@ -8,13 +8,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/format.hpp"
 #include "inverse/known_device.hpp"
 #include "inverse/line_centre_fit.hpp"
 #include "inverse/regime_check.hpp"
+#include "inverse/start_plateau.hpp"
 #include "inverse/track_lines.hpp"
 #include "inverse/tracking.hpp"
 #include "pipeline/run_study.hpp"
@@ -370,6 +373,73 @@ TEST(Tracking, AnExcitedRecordTrackedAsUnexcitedLooksExcited) {
 // k intervals must cover the true k in 0.80-0.99 of the lines detected (a binomial 90 % over
 // ~600 lines lies within 0.88-0.92: the band allows for the bound's being asymptotic), and
 // every line must be found.
+//! `stiffnesses` as asperities of one study (the first is device_study's), each line of
+//! `extra` spliced after the asperity of the same index.
+std::string asperities(const std::vector<double>& stiffnesses, const std::vector<std::string>& extra = {}) {
+  std::string text;
+  for (std::size_t i = 0; i < stiffnesses.size(); ++i) {
+    if (i > 0) text += "[[surface.asperity]]\n";
+    text += "stiffness_n_per_m = " + format_number(stiffnesses[i]) + "\n";
+    if (i < extra.size()) text += extra[i];
+  }
+  return text;
+}
+
+// The asperities in contact at the record's start, counted from its plateau n R sigma w v_b
+// (inverse/start_plateau.hpp), against the simulated truth: 1, 7 and 12 asperities of
+// 25-155 N/m at 25 dB, each count exact (the plateau lasts >= 0.18 us, and the noise of an
+// 80 ns mean is ~0.05 of one asperity's step here: a miscount is a real failure).
+TEST(Tracking, AsperitiesAtTheStartCountedFromThePlateau) {
+  const std::vector<double> all{25, 155, 60, 90, 40, 120, 75, 33, 140, 52, 105, 66};
+  for (const std::size_t n : {1u, 7u, 12u}) {
+    const std::vector<double> k(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(n));
+    const Simulated s = simulate(device_study("20e-6", "", asperities(k)));
+    const std::optional<std::size_t> counted = asperities_at_start(s.device, s.grid, s.voltage);
+    ASSERT_TRUE(counted.has_value());
+    EXPECT_EQ(*counted, n);
+  }
+}
+
+// A crowded start tracked (unexcited, 25 dB): 8 asperities ring at once from t = 0, a ninth
+// arrives at 250 us, one of the eight (72 N/m) is released at 500 us; 800 us. Against the
+// truth: the onset and the release each found once within +-20 us (issue 26's timing
+// target), no other onset after the first 20 us (the start's ringings heard late, and the
+// release of an asperity never heard, are no onsets: inverse/track_births.hpp), no step, and
+// n(t) (8, 9, then 8) exact in at least 90 % of the windows (the start counted from its
+// plateau; before these changes the count missed the start's unheard asperities throughout).
+TEST(Tracking, UnexcitedCrowdedStartOnsetAndReleaseFoundAndCountExact) {
+  const std::vector<double> k{35, 48, 57, 72, 88, 101, 123, 147, 64};
+  std::vector<std::string> extra(k.size());
+  extra[3] = "release_s = 500e-6\n";
+  extra[8] = "onset_s = 250e-6\n";
+  const Simulated s = simulate(device_study("800e-6", "", asperities(k, extra)));
+  const TrackingResult r = tracked(s);
+  std::size_t onsets = 0, releases = 0, steps = 0;
+  for (const TrackEvent& e : r.events) {
+    if (e.kind == TrackEventKind::onset && e.time_s > 20e-6) {
+      ++onsets;
+      EXPECT_NEAR(e.time_s, 250e-6, 20e-6);
+    }
+    if (e.kind == TrackEventKind::release) {
+      ++releases;
+      EXPECT_NEAR(e.time_s, 500e-6, 20e-6);
+    }
+    if (e.kind == TrackEventKind::step) ++steps;
+  }
+  EXPECT_EQ(onsets, 1u);
+  EXPECT_EQ(releases, 1u);
+  EXPECT_EQ(steps, 0u);
+  EXPECT_EQ(r.asperities_at_start, 8u);
+  std::size_t exact = 0;
+  for (std::size_t w = 0; w < r.windows.size(); ++w) {
+    const double t = r.windows[w].centre_s;
+    const double truth = 8.0 + (t >= 250e-6 ? 1.0 : 0.0) - (t >= 500e-6 ? 1.0 : 0.0);
+    if (r.count[w] == truth) ++exact;
+  }
+  std::printf("  n(t) exact in %zu of %zu windows\n", exact, r.windows.size());
+  EXPECT_GE(static_cast<double>(exact), 0.9 * static_cast<double>(r.windows.size()));
+}
+
 TEST(Tracking, LineIntervalsCoverTheTruthOnDampedSinusoids) {
   const Study study = parse_study(device_study("300e-6", "", "stiffness_n_per_m = 60"), "track_test.toml");
   const KnownDevice device = known_device_from_study(study);

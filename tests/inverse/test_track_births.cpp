@@ -1,0 +1,140 @@
+// What a new unexcited track is, judged by how strongly it rings (inverse/track_births.hpp):
+// synthetic tracks whose lines ring exactly as the closed forms of inverse/event_ringing.hpp
+// predict for an onset, a release, a step and a weak re-hearing, against what each must become.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "inverse/event_ringing.hpp"
+#include "inverse/known_device.hpp"
+#include "inverse/track_births.hpp"
+#include "inverse/track_events.hpp"
+#include "inverse/track_lines.hpp"
+#include "inverse/track_windows.hpp"
+#include "pipeline/study.hpp"
+
+namespace stengmc {
+namespace {
+
+KnownDevice test_device() {
+  const Study study = parse_study(R"(duration_s = 1e-3
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 5
+static_friction = 0.28
+kinetic_friction = 0.22
+damping_n_s_per_m = 1e-7
+stribeck_decay_s_per_m = 1e-7
+atan_sharpness_s_per_m = 1e3
+friction_form = "consistent"
+[circuit]
+load_resistance_ohm = 1e6
+load_capacitance_f = 0
+[surface.defaults]
+mass_kg = 1e-12
+normal_load_n = 1e-3
+charge_density_c_per_m2 = 80e-6
+effective_thickness_m = 50e-6
+width_m = 10e-6
+length_m = 50e-6
+[[surface.asperity]]
+stiffness_n_per_m = 60
+)",
+                                  "births.toml");
+  return known_device_from_study(study);
+}
+
+struct Fixture {
+  KnownDevice device = test_device();
+  RecordGrid grid{0.0, 1e-8, 100000};
+  std::vector<TrackWindow> windows = track_windows(grid, track_windowing(device, grid));
+  LinkSettings link;
+  Fixture() {
+    link.hold_silent = true;
+    link.min_sightings = 4;
+    link.drift_per_window = 0.5 * 0.3 * 5e-6 / 1e-3;
+  }
+
+  //! A free ringing of stiffness k born in window `first` with initial amplitude `a0` at the
+  //! burst's estimated time (burst_event), heard in `count` consecutive windows: each line's
+  //! amplitude at its window's start a0 e^{-gamma (start - t)}, its SNR 200 e^{-gamma (start -
+  //! t)}, its frequency error 1 kHz.
+  Track ringing(double k, std::size_t first, std::size_t count, double a0) const {
+    const double t = burst_event(TrackEventKind::onset, first, windows, 0).time_s;
+    Track track;
+    for (std::size_t w = first; w < first + count; ++w) {
+      const double decay = std::exp(-device.damping_rate_per_s() * std::max(0.0, windows[w].start_s - t));
+      WindowLine l;
+      l.frequency_hz = frequency_at(device, k);
+      l.frequency_se_hz = 1e3;
+      l.amplitude_v = a0 * decay;
+      l.snr = 200.0 * decay;
+      l.stiffness_n_per_m = k;
+      l.detected = true;
+      track.sightings.push_back({w, l});
+    }
+    return track;
+  }
+  //! A 60 N/m asperity heard from the record's start for 20 windows, then silent (held).
+  Track held() const { return ringing(60.0, 0, 20, onset_ringing_v(device, 60.0)); }
+};
+
+// Heard as loud as a release on a held track's line: that track's release, not an onset.
+TEST(TrackBirths, AReleaseLoudLineOnAHeldTrackIsItsRelease) {
+  Fixture f;
+  std::vector<Track> tracks{f.held(), f.ringing(60.0, 80, 20, release_ringing_v(f.device, 60.0))};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_TRUE(tracks[0].released);
+  EXPECT_EQ(tracks[0].sightings[tracks[0].release_sighting].window, 80u);
+}
+
+// As loud as an onset, far from any held line and ringing ~100 us: an onset, kept.
+TEST(TrackBirths, AnOnsetLoudLineIsAnOnset) {
+  Fixture f;
+  std::vector<Track> tracks{f.held(), f.ringing(100.0, 80, 20, onset_ringing_v(f.device, 100.0))};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[1].birth, TrackBirth::onset);
+  EXPECT_FALSE(tracks[1].released);
+}
+
+// A tenth of an onset's ringing on the held line: the held track re-heard (no event), and far
+// from it, late: a line no event explains (not held).
+TEST(TrackBirths, AWeakLineIsNoOnset) {
+  Fixture f;
+  std::vector<Track> tracks{f.held(), f.ringing(60.0, 80, 20, 0.1 * onset_ringing_v(f.device, 60.0)),
+                            f.ringing(120.0, 90, 20, 0.1 * onset_ringing_v(f.device, 120.0))};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_FALSE(tracks[0].released);
+  EXPECT_TRUE(tracks[0].step_sightings.empty());
+  EXPECT_EQ(tracks[0].sightings.back().window, 99u);
+  EXPECT_EQ(tracks[1].birth, TrackBirth::unexplained);
+}
+
+// 60 -> 62 N/m heard 55 us after the held line's last window (beyond the gate with the wear
+// drift, within a step's reach), ringing as that step does: a step of the held track. The same
+// line ringing at a fifth of that (below half the weakest the step can ring, its stiffness
+// before worn by up to w_max since) is too weak for the jump it claims: no step of it.
+TEST(TrackBirths, ALineRingingAsTheJumpPredictsIsAStep) {
+  Fixture f;
+  const double step_v = step_ringing_v(f.device, 60.0, 62.0);
+  std::vector<Track> tracks{f.held(), f.ringing(62.0, 30, 20, step_v)};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0);
+  ASSERT_EQ(tracks.size(), 1u);
+  ASSERT_EQ(tracks[0].step_sightings.size(), 1u);
+  EXPECT_EQ(tracks[0].sightings[tracks[0].step_sightings[0]].window, 30u);
+
+  std::vector<Track> weaker{f.held(), f.ringing(62.0, 30, 20, 0.2 * step_v)};
+  classify_track_births(f.device, weaker, f.windows, f.link, 0.3, 5.0);
+  ASSERT_EQ(weaker.size(), 2u);
+  EXPECT_TRUE(weaker[0].step_sightings.empty());
+  EXPECT_EQ(weaker[1].birth, TrackBirth::unexplained);
+}
+
+}  // namespace
+}  // namespace stengmc
