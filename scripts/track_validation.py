@@ -272,6 +272,8 @@ def main():
     parser.add_argument("--out", default="results/track_validation")
     parser.add_argument("--binary", default="build/src/stengmc")
     parser.add_argument("--diagnose", action="store_true", help="also print what each false unexcited event is")
+    parser.add_argument("--regime", choices=("both", "unexcited", "excited"), default="both",
+                        help="simulate and track only this half (every record is still drawn, so record i is the same)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rng = np.random.default_rng(args.seed)
@@ -282,6 +284,8 @@ def main():
     for i in range(args.n):
         excited = i % 2 == 1
         d = draw(rng, excited)
+        if args.regime != "both" and args.regime != ("excited" if excited else "unexcited"):
+            continue
         stem = os.path.join(args.out, "record_%03d" % i)
         with open(stem + ".toml", "w") as fh:
             fh.write(record_study(d, args.seed + i))
