@@ -21,7 +21,9 @@
 # Environment (defaults in brackets): BANK_RECORDS, records per bank [the device's
 # calibration_records, 2000]: a smaller bank calibrates the intervals more coarsely, but it
 # is what two cores can afford in a working session (a broadened record costs ~9 s);
-# STENGMC_BIN, the binary [build/src/stengmc]: pin a copy when the build may change under a
+# FAMILY_SIZE, signals per held-out family [100, the family studies' realisations]: the first
+# FAMILY_SIZE realisations of each family (the same records as in the full family), in
+# results/inverse/families<FAMILY_SIZE>/; STENGMC_BIN, the binary [build/src/stengmc]: pin a copy when the build may change under a
 # run of hours; OUT, the output folder [results/inverse].
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -51,7 +53,7 @@ if [[ $part == both || $part == ideal ]]; then
 fi
 
 if [[ $part == both || $part == real ]]; then
-  families=$out/families
+  families=$out/families${FAMILY_SIZE:-}
   mkdir -p "$families"
   for vb in 10 1; do bank "studies/inverse/device_vb${vb}_real.toml" "$out/device_vb${vb}_real_bank.h5"; done
   args=()
@@ -59,7 +61,12 @@ if [[ $part == both || $part == real ]]; then
     vb=10; [[ $family == vb1 || $family == all ]] && vb=1
     device=studies/inverse/device_vb${vb}_real.toml
     signals=$families/$family.h5
-    [[ -f $signals ]] || "$bin" run "studies/inverse/validation/$family.toml" -o "$signals" > /dev/null
+    study=studies/inverse/validation/$family.toml
+    if [[ -n ${FAMILY_SIZE:-} ]]; then
+      sed "s/^realisations = 100$/realisations = $FAMILY_SIZE/" "$study" > "$families/$family.toml"
+      study=$families/$family.toml
+    fi
+    [[ -f $signals ]] || "$bin" run "$study" -o "$signals" > /dev/null
     invert "$signals" "$device" "$out/device_vb${vb}_real_bank.h5" "$families/inverted_$family.h5"
     args+=("$signals" "$families/inverted_$family.h5" "$out/device_vb${vb}_real_bank.h5")
   done
