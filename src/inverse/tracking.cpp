@@ -271,7 +271,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   // the record (inverse/track_births.hpp).
   if (!r.excited) {
     confirm_releases(device, r.tracks, r.windows, lag);
-    classify_track_births(device, r.tracks, r.windows, link, settings.max_wear_per_ms, settings.threshold_snr);
+    classify_track_births(device, r.tracks, r.windows, link, settings.max_wear_per_ms, settings.threshold_snr, lag);
   }
   if (r.excited) {
     // An excited line wanders between windows by more than its Cramer-Rao error (and, near
