@@ -34,13 +34,15 @@ std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow
 //! as a free ringing stays above the detection threshold `threshold`: ln(snr / threshold) / gamma
 //! (~90 us from z = 500). At least half of that (a neighbour's line may take its last
 //! windows): a line heard only in the windows that straddle someone's onset is the fit's
-//! artefact of a partial ringing, not a ringing of its own.
+//! artefact of a partial ringing, not a ringing of its own. The record may end sooner: then
+//! it must be heard to the record's end (an onset in its last ~45 us is no artefact for that).
 bool heard_as_long_as_it_rings(const Track& t, const std::vector<TrackWindow>& windows, double birth_s, double gamma,
                                double threshold) {
   double snr = 0.0;
   for (const TrackSighting& s : t.sightings) snr = std::max(snr, s.line.snr);
   const double rings_s = std::log(std::max(1.0, snr / threshold)) / gamma;
-  return windows[t.sightings.back().window].end_s - birth_s >= 0.5 * rings_s;
+  const double left_s = windows.back().end_s - birth_s;
+  return windows[t.sightings.back().window].end_s - birth_s >= std::min(0.5 * rings_s, left_s);
 }
 
 //! Median frequency of the first three sightings [Hz].

@@ -139,6 +139,18 @@ TEST(TrackBirths, ALineRingingAsTheJumpPredictsIsAStep) {
   EXPECT_EQ(weaker[1].birth, TrackBirth::unexplained);
 }
 
+// An onset in the record's last 25 us (the probe's late.toml, issue 26 F6: 90 N/m at 975 us of
+// 1 ms), heard as loud as an onset to the record's end: an onset, though a free ringing of its
+// level rings ~90 us (half of it was asked, more than the record has left: unexplained before).
+TEST(TrackBirths, AnOnsetHeardToTheRecordsEndIsAnOnset) {
+  Fixture f;
+  const std::size_t last = f.windows.size() - 1, first = last - 4;
+  std::vector<Track> tracks{f.held(), f.ringing(90.0, first, last - first + 1, onset_ringing_v(f.device, 90.0))};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0, f.lag);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[1].birth, TrackBirth::onset);
+}
+
 // The probe's sparse record (issue 26, F1): the window that straddles a release reads the
 // held line 3.9 % low and is linked to the held track as its last sighting; the release's
 // ringing is heard from the next window on. It is that track's release (the straddling
