@@ -264,7 +264,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   link.step_overlap_windows = r.excited ? lag : 0;
   // Unexcited, the loudest a step rings is the belt's limit (inverse/event_ringing.hpp): a
   // louder line near a held track is no step of it.
-  if (!r.excited) link.max_step_ringing_v = RINGING_TOLERANCE * device.voltage_scale_v();
+  if (!r.excited) link.max_step_ringing_v = RINGING_TOLERANCE * std::abs(device.voltage_scale_v());
   r.tracks = link_tracks(lines, link);
   // Unexcited, each release burst and each new track's first line is judged by how strongly it
   // rings: an onset, a release, a held track re-heard or stepped, or an asperity there before

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "inverse/event_ringing.hpp"
@@ -18,7 +19,8 @@
 namespace stengmc {
 namespace {
 
-KnownDevice test_device() {
+//! The births' device; `charge` its charge density [C/m^2] and `damping` its c [N s/m].
+KnownDevice test_device(const std::string& charge = "80e-6", const std::string& damping = "1e-7") {
   const Study study = parse_study(R"(duration_s = 1e-3
 sample_rate_hz = 100e6
 [model]
@@ -26,7 +28,7 @@ kind = "model2"
 belt_velocity_m_per_s = 5
 static_friction = 0.28
 kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
+damping_n_s_per_m = )" + damping + R"(
 stribeck_decay_s_per_m = 1e-7
 atan_sharpness_s_per_m = 1e3
 friction_form = "consistent"
@@ -36,7 +38,7 @@ load_capacitance_f = 0
 [surface.defaults]
 mass_kg = 1e-12
 normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
+charge_density_c_per_m2 = )" + charge + R"(
 effective_thickness_m = 50e-6
 width_m = 10e-6
 length_m = 50e-6
@@ -48,12 +50,12 @@ stiffness_n_per_m = 60
 }
 
 struct Fixture {
-  KnownDevice device = test_device();
+  KnownDevice device;
   RecordGrid grid{0.0, 1e-8, 100000};
   std::vector<TrackWindow> windows = track_windows(grid, track_windowing(device, grid));
   LinkSettings link;
   std::size_t lag = 0;  //!< windows that overlap one
-  Fixture() {
+  explicit Fixture(KnownDevice d = test_device()) : device(std::move(d)) {
     const TrackWindowing w = track_windowing(device, grid);
     lag = (w.length + w.hop - 1) / w.hop;
     link.hold_silent = true;
@@ -73,7 +75,7 @@ struct Fixture {
       WindowLine l;
       l.frequency_hz = frequency_at(device, k);
       l.frequency_se_hz = 1e3;
-      l.amplitude_v = a0 * decay;
+      l.amplitude_v = std::abs(a0) * decay;  // (a line's amplitude is a magnitude)
       l.snr = 200.0 * decay;
       l.stiffness_n_per_m = k;
       l.detected = true;
@@ -149,6 +151,22 @@ TEST(TrackBirths, AnOnsetHeardToTheRecordsEndIsAnOnset) {
   classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0, f.lag);
   ASSERT_EQ(tracks.size(), 2u);
   EXPECT_EQ(tracks[1].birth, TrackBirth::onset);
+}
+
+// A negative charge density (the probe's dev10_neg.toml, issue 26 F7) makes R sigma w negative,
+// not the lines' amplitudes: a line ringing as a 60 -> 62 N/m step predicts is still a step of
+// the held track, and a release-loud line on it still its release (before: every prediction
+// negative, and no step ever fitted).
+TEST(TrackBirths, ANegativeChargeDensityJudgesByMagnitude) {
+  Fixture f(test_device("-80e-6"));
+  std::vector<Track> tracks{f.held(), f.ringing(62.0, 30, 20, step_ringing_v(f.device, 60.0, 62.0)),
+                            f.ringing(62.0, 80, 20, release_ringing_v(f.device, 62.0))};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0, f.lag);
+  ASSERT_EQ(tracks.size(), 1u);
+  ASSERT_EQ(tracks[0].step_sightings.size(), 1u);
+  EXPECT_EQ(tracks[0].sightings[tracks[0].step_sightings[0]].window, 30u);
+  EXPECT_TRUE(tracks[0].released);
+  EXPECT_EQ(tracks[0].sightings[tracks[0].release_sighting].window, 80u);
 }
 
 // The probe's sparse record (issue 26, F1): the window that straddles a release reads the
