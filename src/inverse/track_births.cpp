@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "inverse/event_ringing.hpp"
@@ -40,7 +41,8 @@ bool heard_as_long_as_it_rings(const Track& t, const std::vector<TrackWindow>& w
                                double threshold) {
   double snr = 0.0;
   for (const TrackSighting& s : t.sightings) snr = std::max(snr, s.line.snr);
-  const double rings_s = std::log(std::max(1.0, snr / threshold)) / gamma;
+  // (Undamped, c = 0: a free ringing never fades, and is heard to the record's end.)
+  const double rings_s = gamma > 0.0 ? std::log(std::max(1.0, snr / threshold)) / gamma : std::numeric_limits<double>::infinity();
   const double left_s = windows.back().end_s - birth_s;
   return windows[t.sightings.back().window].end_s - birth_s >= std::min(0.5 * rings_s, left_s);
 }

@@ -52,11 +52,12 @@ stiffness_n_per_m = 60
 struct Fixture {
   KnownDevice device;
   RecordGrid grid{0.0, 1e-8, 100000};
-  std::vector<TrackWindow> windows = track_windows(grid, track_windowing(device, grid));
+  // (The damped device's windows for every device: an undamped one has no default window.)
+  std::vector<TrackWindow> windows = track_windows(grid, track_windowing(test_device(), grid));
   LinkSettings link;
   std::size_t lag = 0;  //!< windows that overlap one
   explicit Fixture(KnownDevice d = test_device()) : device(std::move(d)) {
-    const TrackWindowing w = track_windowing(device, grid);
+    const TrackWindowing w = track_windowing(test_device(), grid);
     lag = (w.length + w.hop - 1) / w.hop;
     link.hold_silent = true;
     link.min_sightings = 4;
@@ -167,6 +168,20 @@ TEST(TrackBirths, ANegativeChargeDensityJudgesByMagnitude) {
   EXPECT_EQ(tracks[0].sightings[tracks[0].step_sightings[0]].window, 30u);
   EXPECT_TRUE(tracks[0].released);
   EXPECT_EQ(tracks[0].sightings[tracks[0].release_sighting].window, 80u);
+}
+
+// An undamped device (c = 0, the probe's dev10_c0.toml, issue 26 F8): a free ringing never
+// decays, so an onset-loud line heard from its birth to the record's end is an onset, even one
+// heard at the threshold (ln(1) / gamma was 0 / 0: unexplained before).
+TEST(TrackBirths, AnUndampedOnsetHeardToTheEndIsAnOnset) {
+  Fixture f(test_device("80e-6", "0"));
+  const std::size_t first = 80, count = f.windows.size() - first;
+  Track born = f.ringing(100.0, first, count, onset_ringing_v(f.device, 100.0));
+  for (TrackSighting& s : born.sightings) s.line.snr = 5.0;
+  std::vector<Track> tracks{f.held(), born};
+  classify_track_births(f.device, tracks, f.windows, f.link, 0.3, 5.0, f.lag);
+  ASSERT_EQ(tracks.size(), 2u);
+  EXPECT_EQ(tracks[1].birth, TrackBirth::onset);
 }
 
 // The probe's sparse record (issue 26, F1): the window that straddles a release reads the
