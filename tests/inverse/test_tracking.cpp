@@ -418,10 +418,10 @@ std::string with(std::string text, const std::string& from, const std::string& t
   return text;
 }
 
-// A capture cropped at a release's ring-down (the probe's single_rel crop, issue 26 F2): no
-// asperity is stuck at its start (truth 0), and its first samples are the ringing's peak,
-// 3 x R sigma w v_b, and its fall: synthetic, A e^{-gamma t} cos(omega t) at 100 N/m, 25 dB
-// of one unit. No count, where the largest early mean read 3.
+// A capture cropped in a release's ring-down (the probe's single_rel crop, issue 26 F2): no
+// asperity is stuck at its start (truth 0); it starts at the ringing's zero crossing and
+// reaches its peak, 3 x R sigma w v_b, 160 ns later: synthetic, A e^{-gamma t} sin(omega t)
+// at 100 N/m, noise 0.1 unit. No count, where the largest early mean read the peak as 3.
 TEST(Tracking, PlateauNotReadInACaptureCroppedAtARingDown) {
   const Simulated one = simulate(device_study("20e-6", "", asperities({100.0})));
   const double unit = one.device.voltage_scale_v(), omega = one.device.angular_frequency(100.0);
@@ -430,7 +430,7 @@ TEST(Tracking, PlateauNotReadInACaptureCroppedAtARingDown) {
   std::normal_distribution<double> noise(0.0, 0.1 * unit);
   for (std::size_t i = 0; i < v.size(); ++i) {
     const double t = one.grid.at(i);
-    v[i] = 3.0 * unit * std::exp(-one.device.damping_rate_per_s() * t) * std::cos(omega * t) + noise(rng);
+    v[i] = 3.0 * unit * std::exp(-one.device.damping_rate_per_s() * t) * std::sin(omega * t) + noise(rng);
   }
   EXPECT_FALSE(asperities_at_start(one.device, 160.0, 0.1 * unit, one.grid, v).has_value());
 }
