@@ -59,6 +59,10 @@ void print_summary(const TrackingResult& r) {
               r.band_high_hz / 1e6, r.seconds);
   std::printf("  count n(t): %.0f-%.0f (naive FFT peaks %.0f-%.0f); %zu tracks; events: %zu onsets, %zu releases, %zu steps\n",
               *count_min, *count_max, *naive_min, *naive_max, r.tracks.size(), onsets, releases, steps);
+  if (r.asperities_at_start > 0)
+    std::printf("  at the start: %zu asperities from its plateau (%.2f x R sigma w v_b)\n", r.asperities_at_start, r.start_level);
+  else if (!r.excited)
+    std::printf("  at the start: not read (no flat plateau of whole asperities after the belt starts)\n");
   std::printf("  %5s  %-26s %-26s %s\n", "track", "onset [us] (interval)", "release [us] (interval)",
               "stiffness [N/m] between events (90 %)");
   for (std::size_t t = 0; t < r.tracks.size(); ++t) {

@@ -8,7 +8,8 @@ namespace stengmc {
 double ringing_voltage_v(const KnownDevice& device, double stiffness_n_per_m, double velocity_amplitude_m_per_s) {
   const double omega = device.angular_frequency(stiffness_n_per_m);
   const double rc = device.circuit.load_resistance_ohm * device.circuit.load_capacitance_f;
-  const double scale = device.voltage_scale_v() / device.model.belt_velocity_m_per_s;  // R sigma w [V s/m]
+  // |R sigma w| [V s/m]: a line's amplitude is a magnitude, whatever the charge's sign.
+  const double scale = std::abs(device.voltage_scale_v()) / device.model.belt_velocity_m_per_s;
   return scale * velocity_amplitude_m_per_s / std::sqrt(1.0 + omega * omega * rc * rc);
 }
 

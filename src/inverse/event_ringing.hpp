@@ -29,8 +29,9 @@ double release_ringing_v(const KnownDevice& device, double stiffness_n_per_m);
 //! rings with u = F |1/k' - 1/k| sqrt(k'/m), at most v_b (the belt's limit above) [V].
 double step_ringing_v(const KnownDevice& device, double stiffness_before_n_per_m, double stiffness_after_n_per_m);
 
-//! The voltage a ringing of velocity amplitude u at stiffness k shows, R sigma w u through the
-//! load's low pass 1 / sqrt(1 + (omega R C_L)^2) (the elements' own capacitance neglected) [V].
+//! The voltage a ringing of velocity amplitude u at stiffness k shows, |R sigma w| u through the
+//! load's low pass 1 / sqrt(1 + (omega R C_L)^2) (the elements' own capacitance neglected): a
+//! magnitude, as the lines' amplitudes are (a negative sigma only turns the ringing over) [V].
 double ringing_voltage_v(const KnownDevice& device, double stiffness_n_per_m, double velocity_amplitude_m_per_s);
 
 }  // namespace stengmc

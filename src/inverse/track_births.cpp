@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "inverse/event_ringing.hpp"
@@ -34,13 +35,16 @@ std::optional<double> amplitude_at(const Track& t, const std::vector<TrackWindow
 //! as a free ringing stays above the detection threshold `threshold`: ln(snr / threshold) / gamma
 //! (~90 us from z = 500). At least half of that (a neighbour's line may take its last
 //! windows): a line heard only in the windows that straddle someone's onset is the fit's
-//! artefact of a partial ringing, not a ringing of its own.
+//! artefact of a partial ringing, not a ringing of its own. The record may end sooner: then
+//! it must be heard to the record's end (an onset in its last ~45 us is no artefact for that).
 bool heard_as_long_as_it_rings(const Track& t, const std::vector<TrackWindow>& windows, double birth_s, double gamma,
                                double threshold) {
   double snr = 0.0;
   for (const TrackSighting& s : t.sightings) snr = std::max(snr, s.line.snr);
-  const double rings_s = std::log(std::max(1.0, snr / threshold)) / gamma;
-  return windows[t.sightings.back().window].end_s - birth_s >= 0.5 * rings_s;
+  // (Undamped, c = 0: a free ringing never fades, and is heard to the record's end.)
+  const double rings_s = gamma > 0.0 ? std::log(std::max(1.0, snr / threshold)) / gamma : std::numeric_limits<double>::infinity();
+  const double left_s = windows.back().end_s - birth_s;
+  return windows[t.sightings.back().window].end_s - birth_s >= std::min(0.5 * rings_s, left_s);
 }
 
 //! Median frequency of the first three sightings [Hz].
@@ -65,6 +69,20 @@ std::size_t absorb(Track& held, Track& born) {
   if (born.released) held.released = true, held.release_sighting = first + born.release_sighting;
   born.sightings.clear();
   return first;
+}
+
+//! The number of `t`'s sightings before the `lag` windows that precede `first_window` (those
+//! share samples with the event there, if it is one, and straddle it).
+std::size_t clear_of(const Track& t, std::size_t first_window, std::size_t lag) {
+  std::size_t n = t.sightings.size();
+  while (n > 0 && t.sightings[n - 1].window + lag > first_window) --n;
+  return n;
+}
+
+//! Drops `t`'s sightings from `i` on (and the steps marked there).
+void drop_from(Track& t, std::size_t i) {
+  t.sightings.resize(i);
+  std::erase_if(t.step_sightings, [&](std::size_t s) { return s >= i; });
 }
 
 //! Marks `t` released at sighting `i`: a released asperity's line is its frozen stiffness, so
@@ -118,7 +136,7 @@ void confirm_releases(const KnownDevice& device, std::vector<Track>& tracks, con
 }
 
 void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
-                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr) {
+                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr, std::size_t lag) {
   const double gamma = device.damping_rate_per_s();
   const double record_start_s = windows.front().start_s;
   // Births in time order: a track merged into a held one may itself take a later birth.
@@ -151,22 +169,29 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
       continue;
     }
 
-    // The held tracks this line may belong to: silent for two windows or more before it began.
-    // Within the gate: the same line (its wear since moves it by at most half w_max per ms);
-    // within a step's reach: a step of it, when the ringing fits the jump.
-    std::optional<std::size_t> same, stepped;
-    double same_d = 0.0, step_d = 0.0;
+    // The held tracks this line may belong to: silent since before it began. Their sightings in
+    // the `lag` windows before it straddle the event (a release's window reads the line a few
+    // % off, and the linker or an earlier birth may have given it to the held track): they are
+    // left out of the comparison, and dropped when it is absorbed. Within the gate: the same
+    // line (its wear since moves it by at most half w_max per ms); within a step's reach: a
+    // step of it, when the ringing fits the jump.
+    std::optional<std::size_t> same, stepped, just_silent;
+    double same_d = 0.0, step_d = 0.0, silent_d = 0.0;
     for (std::size_t h = 0; h < tracks.size(); ++h) {
       const Track& held = tracks[h];
       if (h == b || held.sightings.empty() || held.released || held.sightings.size() < link.min_sightings ||
-          held.sightings.back().window + 2 > first_window)
+          held.sightings.back().window >= first_window)
         continue;
+      const std::size_t before = clear_of(held, first_window, lag);
+      if (before == 0) continue;
+      const auto straddling = held.sightings.begin() + static_cast<std::ptrdiff_t>(before);
       // Its last clear line (z >= reacquire_snr): a fading ringing's last lines have wide errors,
       // which would open the gate to a neighbour's line.
-      const auto clear = std::find_if(held.sightings.rbegin(), held.sightings.rend(),
+      const auto clear = std::find_if(std::make_reverse_iterator(straddling), held.sightings.rend(),
                                       [&](const TrackSighting& x) { return x.line.snr >= link.reacquire_snr; });
-      const WindowLine& last = clear == held.sightings.rend() ? held.sightings.back().line : clear->line;
-      const double elapsed = static_cast<double>(first_window - held.sightings.back().window);
+      const TrackSighting& last_seen = held.sightings[before - 1];
+      const WindowLine& last = clear == held.sightings.rend() ? last_seen.line : clear->line;
+      const double elapsed = static_cast<double>(first_window - last_seen.window);
       const double drift = link.drift_per_window * elapsed;
       const double d = std::abs(f - last.frequency_hz) / last.frequency_hz;
       const double gate = link.gate_z * std::hypot(last.frequency_se_hz, born_se_hz) / last.frequency_hz;
@@ -174,20 +199,26 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
         if (!same || d < same_d) same = h, same_d = d;
         continue;
       }
-      if (release_like || d > link.step_fraction + drift) continue;
+      if (d > link.step_fraction + drift) continue;
+      // Heard until less than `lag` windows before a release-loud line within a step's reach:
+      // its release read off-line by the windows that straddle it (never an asperity unheard).
+      if (before < held.sightings.size() && (!just_silent || d < silent_d)) just_silent = h, silent_d = d;
+      if (release_like) continue;
       // The stiffness before the step: the last heard, lowered since by at most w_max per ms.
       const double k_last = last.stiffness_n_per_m;
-      const double dt_s = windows[first_window].start_s - windows[held.sightings.back().window].start_s;
+      const double dt_s = windows[first_window].start_s - windows[last_seen.window].start_s;
       const double k_worn = k_last * std::max(0.0, 1.0 - max_wear_per_ms * dt_s / 1e-3);
       const double ring_a = step_ringing_v(device, k_last, k), ring_b = step_ringing_v(device, k_worn, k);
       const bool straddles = (k_worn - k) * (k_last - k) <= 0.0;  // the step's size may be ~0
       const double low = straddles ? 0.0 : std::min(ring_a, ring_b), high = std::max(ring_a, ring_b);
       if (a >= low / RINGING_TOLERANCE && a <= high * RINGING_TOLERANCE && (!stepped || d < step_d)) stepped = h, step_d = d;
     }
+    if (release_like && !same) same = just_silent;
 
     if (release_like) {
       if (same) {
         Track& held = tracks[*same];
+        drop_from(held, clear_of(held, first_window, lag));
         release_at(held, absorb(held, born));
       } else {
         // The release of an asperity in contact since before the record, never heard so far.
@@ -198,6 +229,7 @@ void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks
       absorb(tracks[*same], born);
     } else if (stepped) {
       Track& held = tracks[*stepped];
+      drop_from(held, clear_of(held, first_window, lag));
       held.step_sightings.push_back(absorb(held, born));
     } else if (within(a * std::exp(gamma * (birth_s - record_start_s)), onset_ringing_v(device, k))) {
       born.birth = TrackBirth::before_record;  // its onset's ringing at the record's start, heard late

@@ -41,8 +41,9 @@ void confirm_releases(const KnownDevice& device, std::vector<Track>& tracks, con
 //! Re-reads the births of `tracks` (unexcited) as above: merges re-heard lines, steps and
 //! releases into the held tracks they belong to (the merged track left empty and dropped),
 //! and sets each remaining track's `birth`. `link` gives the gate and the wear drift;
-//! `threshold_snr` is the detection threshold.
+//! `threshold_snr` is the detection threshold; `lag`: windows that overlap one (a held track's
+//! sightings in the `lag` windows before a birth straddle it and are not its line before it).
 void classify_track_births(const KnownDevice& device, std::vector<Track>& tracks, const std::vector<TrackWindow>& windows,
-                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr);
+                           const LinkSettings& link, double max_wear_per_ms, double threshold_snr, std::size_t lag);
 
 }  // namespace stengmc

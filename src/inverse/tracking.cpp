@@ -264,14 +264,14 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   link.step_overlap_windows = r.excited ? lag : 0;
   // Unexcited, the loudest a step rings is the belt's limit (inverse/event_ringing.hpp): a
   // louder line near a held track is no step of it.
-  if (!r.excited) link.max_step_ringing_v = RINGING_TOLERANCE * device.voltage_scale_v();
+  if (!r.excited) link.max_step_ringing_v = RINGING_TOLERANCE * std::abs(device.voltage_scale_v());
   r.tracks = link_tracks(lines, link);
   // Unexcited, each release burst and each new track's first line is judged by how strongly it
   // rings: an onset, a release, a held track re-heard or stepped, or an asperity there before
   // the record (inverse/track_births.hpp).
   if (!r.excited) {
     confirm_releases(device, r.tracks, r.windows, lag);
-    classify_track_births(device, r.tracks, r.windows, link, settings.max_wear_per_ms, settings.threshold_snr);
+    classify_track_births(device, r.tracks, r.windows, link, settings.max_wear_per_ms, settings.threshold_snr, lag);
   }
   if (r.excited) {
     // An excited line wanders between windows by more than its Cramer-Rao error (and, near
@@ -328,9 +328,11 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   std::vector<std::vector<double>> uncertain(nw);
   std::vector<std::set<double>> linked(nw);
   // Unexcited: the asperities in contact at the record's start, counted by its plateau
-  // (inverse/start_plateau.hpp).
-  // (0: not read.)
-  const std::size_t at_start = r.excited || nw == 0 ? 0 : asperities_at_start(device, grid, v).value_or(0);
+  // (inverse/start_plateau.hpp) before the stiffest plausible asperity (the band's top line)
+  // breaks away. (0: not read.)
+  const std::optional<StartPlateau> plateau =
+      r.excited || nw == 0 ? std::nullopt : asperities_at_start(device, stiffness_at(device, band_hz.second), level.sigma_v, grid, v);
+  const std::size_t at_start = plateau ? plateau->count : 0;
   for (std::size_t t = 0; t < nt; ++t) {
     const Track& track = r.tracks[t];
     // A line no event explains is an asperity already in contact heard again: with the start's
@@ -422,13 +424,17 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
   // (inverse/start_plateau.hpp); those no track accounts for at the first window were never
   // heard (the crowded start rings them all at once) and are in contact throughout, as far as
   // the record tells (a release heard later starts a track of its own, counted from the start).
+  // A plateau far from its integer (a gain error, the baseline's noise) may be off by one:
+  // the band is widened by one throughout.
   if (at_start > 0) {
     r.asperities_at_start = at_start;
+    r.start_level = plateau->level;
     const double unheard = std::max(0.0, static_cast<double>(at_start) - r.count[0]);
+    const double widen = plateau->uncertain() ? 1.0 : 0.0;
     for (std::size_t w = 0; w < nw; ++w) {
       r.count[w] += unheard;
-      r.count_low[w] += unheard;
-      r.count_high[w] += unheard;
+      r.count_low[w] = std::max(0.0, r.count_low[w] + unheard - widen);
+      r.count_high[w] += unheard + widen;
     }
   }
   r.window_lines = lines;

@@ -3,6 +3,7 @@
 //! lines detected per window, linked into tracks, events read off them, the count n(t) and
 //! each track's stiffness k(t) with 90 % intervals.
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -46,6 +47,9 @@ struct TrackingResult {
   //! Unexcited: asperities in contact at the record's start, from its plateau (0: not read;
   //! inverse/start_plateau.hpp). Those no track accounts for are in the count throughout.
   std::size_t asperities_at_start = 0;
+  //! The plateau over R sigma w v_b before rounding (NaN: not read); more than
+  //! PLATEAU_CERTAIN_OFFSET from asperities_at_start widens the count's band by one.
+  double start_level = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> error_inflation;      //!< per track: the factor its frequency errors were scaled by
   std::vector<WindowLines> window_lines;    //!< every window's lines, detected and grey
   std::vector<Track> tracks;

@@ -46,6 +46,10 @@ void write_tracking_file(const std::string& path, const TrackingFileContext& con
   f.attribute("/", "threshold_snr", context.threshold_snr);
   f.attribute("/", "naive_threshold", context.naive_threshold);
   f.attribute("/", "seconds", r.seconds);
+  // Unexcited: the asperities counted at the start from its plateau (0: not read) and, when
+  // read, the plateau's level before rounding.
+  f.attribute("/", "start_count", static_cast<std::int64_t>(r.asperities_at_start));
+  if (r.asperities_at_start > 0) f.attribute("/", "start_level", r.start_level);
 
   std::vector<double> floor;
   for (const WindowLines& w : r.window_lines) floor.push_back(w.floor_v);

@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
+#include "core/hdf5_file.hpp"
 #include "support/cli_runner.hpp"
 
 namespace stengmc {
@@ -84,6 +86,12 @@ TEST(TrackCommand, TracksARingingAndWritesItsFile) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 tracks; events: 1 onsets, 0 releases, 0 steps"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+  // The record is silent until 20 us: no asperity stuck at its start (no plateau), and the
+  // summary and the file say the start's count was not read (issue 26 F4).
+  EXPECT_NE(r.output.find("at the start: not read"), std::string::npos) << r.output;
+  const Hdf5Reader f(out);
+  EXPECT_EQ(f.integer_attribute("/", "start_count"), std::optional<std::int64_t>(0));
+  EXPECT_FALSE(f.number_attribute("/", "start_level").has_value());
 }
 
 }  // namespace
