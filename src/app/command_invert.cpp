@@ -104,7 +104,9 @@ void run(const InvertOptions& options) {
     if (is_record_text(path, options.record.read()))
       check_work(estimate_record_reading(static_cast<double>(check_input_file(path, "the record CSV file"))),
                  options.limits.limits(), path + ": reading it");
-    std::vector<NamedRecord> more = read_inverse_records(path, options.record.read());
+    std::vector<std::string> notes;
+    std::vector<NamedRecord> more = read_inverse_records(path, options.record.read(), &notes);
+    for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
     for (NamedRecord& r : more) records.push_back(std::move(r));
   }
   std::optional<RecordGrid> grid;

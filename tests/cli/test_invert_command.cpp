@@ -7,6 +7,7 @@
 #include <H5Cpp.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <boost/random/normal_distribution.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "core/hdf5_file.hpp"
 
 #include "core/input_file.hpp"
+#include "io/inverse_signals.hpp"
 #include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
@@ -321,6 +323,90 @@ TEST(InvertRecordTypes, IntegerAndFloat32VoltagesAreReadAsNumbers) {
   const std::vector<double> read = out.vector("/inverse/traces/record_0/voltage");
   ASSERT_EQ(read.size(), volts.size());
   for (std::size_t m = 0; m < volts.size(); ++m) ASSERT_EQ(read[m], static_cast<double>(static_cast<float>(volts[m]))) << m;
+}
+
+// An ensemble of the known device's grid in which some realisations are invalid (an
+// asperity of k < mu_s N / l = 5.6 N/m reaches l: [domain] policy "flag" keeps its trace up
+// to there, shorter than the others). invert stopped on that trace's grid; it must skip the
+// invalid realisations, say so, and invert the valid ones (checked against the file's own
+// /realisations/valid, not against numbers this code produced).
+TEST(InvertEnsembleFile, InvalidRealisationsAreSkippedAndNamed) {
+  ScratchDir scratch("invert-invalid");
+  const std::string study = scratch.write("ensemble.toml", R"(seed = 5
+duration_s = 20e-6
+sample_rate_hz = 100e6
+[model]
+kind = "model2"
+belt_velocity_m_per_s = 10
+static_friction = 0.28
+kinetic_friction = 0.22
+damping_n_s_per_m = 1e-7
+stribeck_decay_s_per_m = 1e-7
+atan_sharpness_s_per_m = 1e3
+friction_form = "consistent"
+[circuit]
+load_resistance_ohm = 1e6
+load_capacitance_f = 0
+[domain]
+policy = "flag"
+[surface]
+kind = "random"
+nominal_area_m2 = 1e-6
+[surface.summits]
+count_rule = "fixed"
+count = 3
+[surface.heights]
+kind = "fixed"
+values = [110e-6]
+[surface.stiffness]
+kind = "lognormal"
+median = 40
+sigma_log = 1.5
+[surface.load]
+rule = "fixed"
+normal_load_n = 1e-3
+[surface.element]
+geometry = "fixed"
+length_m = 50e-6
+width_m = 10e-6
+charge_density_c_per_m2 = 80e-6
+effective_thickness_m = 50e-6
+[surface.mass]
+rule = "fixed"
+mass_kg = 1e-12
+[spectrum]
+high_resolution = false
+element_currents = false
+[noise]
+snr_db = 30
+[ensemble]
+realisations = 8
+trace_all = true
+)");
+  const std::string ensemble = scratch.file("ensemble.h5");
+  const auto ran = run_cli("run " + study + " -j 1 -o " + ensemble, scratch);
+  ASSERT_EQ(ran.exit_code, 0) << ran.output;
+  const std::vector<double> valid = Hdf5Reader(ensemble).vector("/realisations/valid");
+  const auto n_valid = static_cast<std::size_t>(std::count(valid.begin(), valid.end(), 1.0));
+  ASSERT_GT(n_valid, 0u) << "the fixture needs valid realisations";
+  ASSERT_LT(n_valid, valid.size()) << "the fixture needs an invalid realisation (another seed or sigma_log)";
+
+  std::vector<std::string> notes;
+  const std::vector<NamedRecord> records = read_inverse_records(ensemble, {}, &notes);
+  EXPECT_EQ(records.size(), n_valid);
+  for (std::size_t r = 0; r < valid.size(); ++r) {
+    const std::string name = ensemble + "#realisation_" + std::to_string(r);
+    const bool read = std::any_of(records.begin(), records.end(), [&](const NamedRecord& x) { return x.name == name; });
+    EXPECT_EQ(read, valid[r] == 1.0) << name;
+  }
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes.front().find(std::to_string(valid.size() - n_valid) + " invalid realisation"), std::string::npos) << notes.front();
+
+  const std::string known = scratch.write("known.toml", device_study_up_to_eight());
+  const auto inverted = run_cli("invert " + ensemble + " --known " + known + " --out " + scratch.file("out.h5") + " -j 1", scratch);
+  ASSERT_EQ(inverted.exit_code, 0) << inverted.output;
+  EXPECT_NE(inverted.output.find("invalid realisation(s) skipped"), std::string::npos) << inverted.output;
+  EXPECT_EQ(Hdf5Reader(scratch.file("out.h5")).vector("/inverse/count/estimate").size(), n_valid);
 }
 
 // [inverse] snr_db = [-1e9, 1e9] was accepted by invert, and calibrate reported it at line 61
