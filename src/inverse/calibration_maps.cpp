@@ -263,12 +263,25 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
     const std::size_t bin = (e.count - prior.count_min) / POPULATION_BIN_COUNTS;
     std::vector<double> k, se;
     for (const EstimatedLine& line : e.lines) k.push_back(line.stiffness_n_per_m), se.push_back(line.log_stiffness_se);
+    // A bank record whose estimate claimed a tiny error and missed makes a huge score, and a
+    // small bank's conformal quantile may be that score: the interval is then as wide as the
+    // prior allows, not wider (it had overflowed to infinity). The realised median lies within
+    // the prior's support of k, and the sd (n - 1 denominator) of any n >= 2 values of ln k
+    // within it is at most half its width x sqrt(2) (n = 2, one at each end); in logs, so that
+    // no bound overflows.
+    const auto [k_low, k_high] = prior.support();
     const double h = own->median_score_quantile[bin] * median_log_scale(k, se);
-    out.median_low = out.median * std::exp(-h);
-    out.median_high = out.median * std::exp(h);
+    if (out.median > 0.0) {
+      const double ln_median = std::log(out.median);
+      out.median_low = std::exp(std::min(ln_median, std::max(ln_median - h, std::log(k_low))));
+      out.median_high = std::exp(std::max(ln_median, std::min(ln_median + h, std::log(k_high))));
+    } else {
+      out.median_low = out.median_high = out.median;
+    }
     const double hs = own->sd_score_quantile[bin] * sd_log_scale(k, se);
+    const double widest_sd = 0.5 * std::log(k_high / k_low) * std::sqrt(2.0);
     out.sd_log_low = std::max(0.0, out.sd_log - hs);
-    out.sd_log_high = out.sd_log + hs;
+    out.sd_log_high = std::max(out.sd_log, std::min(out.sd_log + hs, widest_sd));
     out.population_intervals = true;
   } else {
     out.median_low = out.median_high = out.median;
