@@ -165,7 +165,7 @@ def main(argv):
     rule = "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     print(header.format("family"))
     print(rule)
-    line("all", lambda r: True)
+    line("every record", lambda r: True)
     for family in dict.fromkeys(r["family"] for r in rows):
         line(family, lambda r, family=family: r["family"] == family)
     print()
