@@ -27,6 +27,7 @@ Truth: k(t) = k0 (1 - w (t - onset)/1 ms) x the steps passed, frozen at the rele
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -34,28 +35,23 @@ import time
 import h5py
 import numpy as np
 
-DEVICE_KEYS = """[model]
-kind = "model2"
-belt_velocity_m_per_s = {vb}
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-{counterface}
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
+DEVICE_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "studies", "monitoring",
+                           "device_unexcited.toml")
 
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
-"""
+
+def device_keys(vb, counterface):
+    """The shipped unexcited device's [model], [circuit] and [surface.defaults] (Table 1-2 values:
+    m = 1e-12 kg, c = 1e-7 N s/m), at belt velocity vb [m/s] with `counterface` (a [counterface]
+    table, or nothing) after [model]."""
+    with open(DEVICE_FILE) as f:
+        text = f.read()
+    keys = text[text.index("[model]"):text.index("[[surface.asperity]]")]
+    keys, replaced = re.subn(r"(?m)^belt_velocity_m_per_s = .*$", "belt_velocity_m_per_s = %g" % vb, keys)
+    if replaced != 1 or "\n[circuit]" not in keys:
+        sys.exit("track_validation.py: %s no longer has one belt_velocity_m_per_s and a [circuit] table" % DEVICE_FILE)
+    return keys.replace("\n[circuit]", "\n" + counterface + "\n[circuit]", 1)
+
+
 DURATION = 1e-3
 MATCH_S = 20e-6
 
@@ -90,7 +86,7 @@ def draw(rng, excited):
 
 def record_study(d, seed):
     lines = ["duration_s = %g" % DURATION, "sample_rate_hz = 100e6", "seed = %d" % seed, "",
-             DEVICE_KEYS.format(vb=d["vb"], counterface=d["counterface"])]
+             device_keys(d["vb"], d["counterface"])]
     for a in d["asperities"]:
         lines.append("[[surface.asperity]]")
         lines.append("stiffness_n_per_m = %.6g" % a["k0"])
@@ -107,7 +103,7 @@ def record_study(d, seed):
 
 
 def device_study(d):
-    return ("duration_s = %g\nsample_rate_hz = 100e6\n\n" % DURATION + DEVICE_KEYS.format(vb=d["vb"], counterface=d["counterface"]) +
+    return ("duration_s = %g\nsample_rate_hz = 100e6\n\n" % DURATION + device_keys(d["vb"], d["counterface"]) +
             "\n[[surface.asperity]]\nstiffness_n_per_m = 75\n\n[inverse]\ncount = [1, 40]\nstiffness_law = \"lognormal\"\n"
             "median_n_per_m = [40, 120]\nsigma_log = [0.2, 0.6]\nsnr_db = [20, 35]\n")
 
@@ -184,7 +180,7 @@ def evaluate(d, path):
 
 
 def true_frequency(k):
-    """Damped natural frequency of an asperity of stiffness k with the DEVICE_KEYS m, c [Hz]."""
+    """Damped natural frequency of an asperity of stiffness k with the device_keys m, c [Hz]."""
     m, c = 1e-12, 1e-7
     return math.sqrt(max(k / m - (c / (2 * m)) ** 2, 0.0)) / (2 * math.pi)
 

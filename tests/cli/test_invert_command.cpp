@@ -25,6 +25,7 @@
 #include "pipeline/study.hpp"
 #include "support/cli_runner.hpp"
 #include "support/inverse_device.hpp"
+#include "support/table1_study.hpp"
 
 namespace stengmc {
 namespace {
@@ -332,51 +333,13 @@ TEST(InvertRecordTypes, IntegerAndFloat32VoltagesAreReadAsNumbers) {
 // /realisations/valid, not against numbers this code produced).
 TEST(InvertEnsembleFile, InvalidRealisationsAreSkippedAndNamed) {
   ScratchDir scratch("invert-invalid");
-  const std::string study = scratch.write("ensemble.toml", R"(seed = 5
-duration_s = 20e-6
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 10
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[domain]
-policy = "flag"
-[surface]
-kind = "random"
-nominal_area_m2 = 1e-6
-[surface.summits]
-count_rule = "fixed"
-count = 3
-[surface.heights]
-kind = "fixed"
-values = [110e-6]
-[surface.stiffness]
-kind = "lognormal"
-median = 40
-sigma_log = 1.5
-[surface.load]
-rule = "fixed"
-normal_load_n = 1e-3
-[surface.element]
-geometry = "fixed"
-length_m = 50e-6
-width_m = 10e-6
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
+  const std::string study =
+      scratch.write("ensemble.toml", "seed = 5\nduration_s = 20e-6\nsample_rate_hz = 100e6\n" +
+                                         testing::table1_model_and_circuit({.belt_velocity_m_per_s = "10"}) +
+                                         testing::table1_random_surface(3, "40", "1.5") + R"(
 [surface.mass]
 rule = "fixed"
 mass_kg = 1e-12
-[spectrum]
-high_resolution = false
-element_currents = false
 [noise]
 snr_db = 30
 [ensemble]

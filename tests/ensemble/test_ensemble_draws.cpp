@@ -14,6 +14,7 @@
 #include "ensemble/journal.hpp"
 #include "ensemble/study_file.hpp"
 #include "support/cli_runner.hpp"
+#include "support/table1_study.hpp"
 
 namespace stengmc {
 namespace {
@@ -29,33 +30,7 @@ sample_rate_hz = 100e6
 [model]
 kind = "model2"
 belt_velocity_m_per_s = 10
-[domain]
-policy = "flag"
-[surface]
-kind = "random"
-nominal_area_m2 = 1e-6
-[surface.summits]
-count_rule = "fixed"
-count = 1
-[surface.heights]
-kind = "fixed"
-values = [110e-6]
-[surface.stiffness]
-kind = "lognormal"
-median = 80
-sigma_log = 0.3
-[surface.load]
-rule = "fixed"
-normal_load_n = 1e-3
-[surface.element]
-geometry = "fixed"
-length_m = 50e-6
-width_m = 10e-6
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-[spectrum]
-high_resolution = false
-element_currents = false
+)" + testing::table1_random_surface(1, "80", "0.3") + R"(
 [noise]
 snr_db = 30
 [ensemble]

@@ -14,6 +14,7 @@
 #include "inverse/known_device.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/study.hpp"
+#include "support/table1_study.hpp"
 
 namespace stengmc {
 namespace {
@@ -21,28 +22,8 @@ namespace {
 //! One asperity of Table 1-2 values (belt at `belt` m/s, load 1 mN, R = 1 MOhm, C_L = 0):
 //! onset at 20 us, a step k -> 1.1 k at 120 us, released at 220 us.
 std::string study_text(double k, double belt) {
-  return R"(duration_s = 300e-6
-sample_rate_hz = 100e6
-seed = 1
-[model]
-kind = "model2"
-belt_velocity_m_per_s = )" + std::to_string(belt) + R"(
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
+  return "duration_s = 300e-6\nsample_rate_hz = 100e6\nseed = 1\n" +
+         testing::table1_device_keys({.belt_velocity_m_per_s = std::to_string(belt)}) + R"(
 [[surface.asperity]]
 stiffness_n_per_m = )" + std::to_string(k) + R"(
 onset_s = 20e-6

@@ -15,33 +15,17 @@
 #include "inverse/track_lines.hpp"
 #include "inverse/track_windows.hpp"
 #include "pipeline/study.hpp"
+#include "support/table1_study.hpp"
 
 namespace stengmc {
 namespace {
 
 //! The births' device; `charge` its charge density [C/m^2] and `damping` its c [N s/m].
 KnownDevice test_device(const std::string& charge = "80e-6", const std::string& damping = "1e-7") {
-  const Study study = parse_study(R"(duration_s = 1e-3
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 5
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = )" + damping + R"(
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = )" + charge + R"(
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
+  const Study study = parse_study("duration_s = 1e-3\nsample_rate_hz = 100e6\n" +
+                                      testing::table1_device_keys({.damping_n_s_per_m = damping,
+                                                                   .charge_density_c_per_m2 = charge}) +
+                                      R"(
 [[surface.asperity]]
 stiffness_n_per_m = 60
 )",

@@ -22,6 +22,7 @@
 #include "inverse/tracking.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/study.hpp"
+#include "support/table1_study.hpp"
 
 namespace stengmc {
 namespace {
@@ -30,28 +31,8 @@ namespace {
 //! `--known` study must), with `asperity` and `extra` spliced in.
 std::string device_study(const std::string& duration, const std::string& counterface, const std::string& asperity,
                          int seed = 11) {
-  return "duration_s = " + duration + "\nseed = " + std::to_string(seed) + R"(
-sample_rate_hz = 100e6
-[model]
-kind = "model2"
-belt_velocity_m_per_s = 5
-static_friction = 0.28
-kinetic_friction = 0.22
-damping_n_s_per_m = 1e-7
-stribeck_decay_s_per_m = 1e-7
-atan_sharpness_s_per_m = 1e3
-friction_form = "consistent"
-)" + counterface + R"(
-[circuit]
-load_resistance_ohm = 1e6
-load_capacitance_f = 0
-[surface.defaults]
-mass_kg = 1e-12
-normal_load_n = 1e-3
-charge_density_c_per_m2 = 80e-6
-effective_thickness_m = 50e-6
-width_m = 10e-6
-length_m = 50e-6
+  return "duration_s = " + duration + "\nseed = " + std::to_string(seed) + "\nsample_rate_hz = 100e6\n" +
+         testing::table1_device_keys({.counterface = counterface}) + R"(
 [[surface.asperity]]
 )" + asperity + "\n";
 }
