@@ -13,7 +13,7 @@ struct Table1Device {
   std::string belt_velocity_m_per_s = "5";
   std::string damping_n_s_per_m = "1e-7";
   std::string charge_density_c_per_m2 = "80e-6";
-  std::string counterface;  //!< a whole [counterface] table, or nothing (unexcited)
+  std::string counterface{};  //!< a whole [counterface] table, or nothing (unexcited)
 };
 
 //! `[model]` (Model 2, consistent friction), the optional `[counterface]` and `[circuit]`
