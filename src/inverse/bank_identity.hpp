@@ -12,7 +12,9 @@ namespace stengmc {
 
 //! Bumped whenever the estimator's results change for the same inputs: banks made by another
 //! estimator version are refused (their calibration describes another estimator).
-inline constexpr int ESTIMATOR_VERSION = 1;
+//! 2: a broadened prior's search also starts from its nested models' fits (the ideal device,
+//! loads alone, onsets alone: nested_search.hpp).
+inline constexpr int ESTIMATOR_VERSION = 2;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

@@ -368,6 +368,19 @@ std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
   return best;
 }
 
+OrderFit LineSearch::polish(FitState start) {
+  OrderFit fit = fit_->refine(std::move(start), {}, true, false, options_.max_iterations);
+  // A start with every load at the device's: each unequal load's breakaway, hence its tail's
+  // phase, is off by a fraction of a period or more, which the local fit does not undo.
+  for (std::size_t sweep = 0; sweep < options_.reseat_sweeps; ++sweep) {
+    const double before = fit.residual_v2;
+    replace(fit);
+    if (!(fit.residual_v2 < before)) break;
+  }
+  reseat(fit, options_.reseat_sweeps);
+  return fit_->refine(std::move(fit.state), {}, true, true, options_.max_iterations);
+}
+
 void LineSearch::refit(std::vector<OrderFit>& fits, std::size_t first) {
   // Every order from `first` on, in full: all atoms and the device's shared parameters. An
   // order whose misfit already exceeds the best one's by HOPELESS_CHI2_GAP has a posterior

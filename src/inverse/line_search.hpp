@@ -47,6 +47,12 @@ class LineSearch {
   //! The refits in full of `fits` from index `first` on (after the noise model changed).
   void refit(std::vector<OrderFit>& fits, std::size_t first);
 
+  //! A fit of this search's layout from a start found elsewhere (the nested model's fit of an
+  //! order, nested_search.hpp): refitted in full; then, while it does not fit to the noise,
+  //! its atoms' placements chosen again (replace) and its atoms re-seated (reseat) as the
+  //! greedy path's own orders are, and refitted in full again.
+  OrderFit polish(FitState start);
+
  private:
   //! The best addition to `fit`, refined in ln k by golden section on its exact score.
   LineCandidate best_addition(const OrderFit& fit);

@@ -35,6 +35,7 @@ RecordEstimator::RecordEstimator(const AtomLibrary& atoms, const InversePrior& p
       model_(atoms),
       proposals_(model_, layout_, loads_),
       options_(options),
+      nested_(model_, prior_, atoms.device(), options),
       noise_(atoms.grid().samples, atoms.grid().sample_rate_hz(),
              NOISE_BAND_MARGIN * atoms.device().angular_frequency(prior.support().second) / (2.0 * PI)) {
   const auto [low, high] = prior.support();
@@ -103,7 +104,24 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   LineSearch search(fit, proposals_, options_);
   FitState start;
   start.damping_rate_per_s = layout_.nominal_damping_rate;
-  std::vector<OrderFit> fits = search.search(start, prior_.count_max + 1, prior_.count_min);
+  // The nested models first (inverse/nested_search.hpp). Where one fits the record to its
+  // noise its orders are the fits, evaluated in the broadened model; else the broadened search.
+  // Either way each nested order refitted in full is a start, polished in the broadened model,
+  // that replaces its order's fit where it reaches a better optimum.
+  NestedFits nested;
+  if (nested_.applies()) nested = nested_.search(voltage, sigma, layout_, prior_.count_max + 1, prior_.count_min);
+  std::vector<OrderFit> fits;
+  if (nested.fitted_orders.empty()) fits = search.search(start, prior_.count_max + 1, prior_.count_min);
+  for (FitState& s : nested.fitted_orders) fits.push_back(fit.refine(std::move(s), {}, true, false, 0));
+  const double white_s2 = sigma * sigma;
+  for (FitState& s : nested.starts) {
+    const std::size_t n = s.atoms.size();
+    if (n > fits.size()) continue;  // (the orders stay consecutive: one past the last is added)
+    OrderFit seeded = search.polish(std::move(s));
+    if (n == fits.size()) fits.push_back(std::move(seeded));
+    else if (seeded.residual_v2 / white_s2 + seeded.penalty < fits[n].residual_v2 / white_s2 + fits[n].penalty)
+      fits[n] = std::move(seeded);
+  }
 
   if (layout_.coloured_noise) {
     // The noise's spectrum from the residual of the count the white model prefers, then every

@@ -15,6 +15,7 @@
 #include "inverse/line_proposals.hpp"
 #include "inverse/line_search.hpp"
 #include "inverse/load_prior.hpp"
+#include "inverse/nested_search.hpp"
 #include "inverse/noise_level.hpp"
 #include "inverse/noise_whitening.hpp"
 #include "inverse/record_model.hpp"
@@ -90,6 +91,7 @@ class RecordEstimator {
   RecordModel model_;
   LineProposals proposals_;
   LineSearchOptions options_;
+  NestedSearch nested_;
   double band_low_hz_ = 0.0, band_high_hz_ = 0.0;
   double support_low_ = 0.0, support_high_ = 0.0;
   NoiseEstimator noise_;

@@ -1,0 +1,91 @@
+#include "inverse/nested_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stengmc {
+
+namespace {
+// As LineSearch::refit: an order this far (chi^2) above the best has a posterior weight below
+// e^{-500} of the best's.
+constexpr double HOPELESS_CHI2_GAP = 1000.0;
+// A model fits a record to its noise when its best order's whitened RSS lies within this many
+// standard deviations of chi^2_M's mean (M samples, sd sqrt(2 M)): 1.07 x M sigma^2 at M = 10^4.
+// (The held-out ideal family's true orders under the ideal model: 0.97-1.05.)
+constexpr double FITS_SIGMAS = 5.0;
+}  // namespace
+
+std::vector<InversePrior> nested_priors(const InversePrior& prior) {
+  const bool loads = prior.load_cv[1] > 0.0, onsets = prior.onset_s[1] > prior.onset_s[0];
+  std::vector<InversePrior> out;
+  if (!loads && !onsets) return out;
+  InversePrior ideal = prior;
+  ideal.load_cv = {0.0, 0.0};
+  ideal.onset_s = {prior.onset_s[0], prior.onset_s[0]};
+  out.push_back(ideal);
+  if (loads && onsets) {
+    InversePrior loads_alone = prior;
+    loads_alone.onset_s = ideal.onset_s;
+    out.push_back(loads_alone);
+    InversePrior onsets_alone = prior;
+    onsets_alone.load_cv = ideal.load_cv;
+    out.push_back(onsets_alone);
+  }
+  return out;
+}
+
+struct NestedSearch::Level {
+  LoadPrior loads;
+  FitLayout layout;
+  LineProposals proposals;
+  Level(const RecordModel& model, const InversePrior& prior, const KnownDevice& device)
+      : loads(prior), layout(fit_layout(prior, device, loads)), proposals(model, layout, loads) {}
+};
+
+NestedSearch::NestedSearch(const RecordModel& model, const InversePrior& prior, const KnownDevice& device,
+                           const LineSearchOptions& options)
+    : model_(&model), options_(options) {
+  for (const InversePrior& nested : nested_priors(prior)) levels_.push_back(std::make_unique<Level>(model, nested, device));
+}
+
+NestedSearch::~NestedSearch() = default;
+
+NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v, const FitLayout& layout,
+                               std::size_t max_count, std::size_t min_count) {
+  NestedFits out;
+  const double s2 = sigma_v * sigma_v;
+  const auto samples = static_cast<double>(voltage.size());
+  const double fits_rss = (1.0 + FITS_SIGMAS * std::sqrt(2.0 / samples)) * samples * s2;
+  // A nested fit's atoms carry their loads (N x the shared factor, record_fit.cpp); a layout of
+  // per-atom loads has no shared factor.
+  auto lifted = [&](const FitState& state) {
+    FitState s = state;
+    if (!layout.load_shared) s.load_factor = 1.0;
+    return s;
+  };
+  for (const std::unique_ptr<Level>& level : levels_) {
+    RecordFit fit(*model_, level->layout, level->loads, voltage);
+    fit.set_noise(Whitener(), sigma_v);
+    LineSearch search(fit, level->proposals, options_);
+    FitState start;
+    start.damping_rate_per_s = level->layout.nominal_damping_rate;
+    const std::vector<OrderFit> fits = search.search(start, max_count, min_count);
+    // Only the orders refitted in full (they have their normal matrix), and of those the ones
+    // within reach of the best (as LineSearch::refit judges hopeless): the others carry little
+    // posterior weight, and a broadened refit of each would cost its time for nothing.
+    double best = INFINITY;
+    std::size_t best_order = 0;
+    for (std::size_t n = 0; n < fits.size(); ++n)
+      if (const double chi2 = fits[n].residual_v2 / s2 + fits[n].penalty; chi2 < best) best = chi2, best_order = n;
+    for (const OrderFit& f : fits)
+      if (!f.state.atoms.empty() && f.normal_matrix.size() > 0 && f.residual_v2 / s2 + f.penalty <= best + HOPELESS_CHI2_GAP)
+        out.starts.push_back(lifted(f.state));
+    if (fits[best_order].residual_v2 <= fits_rss) {
+      for (const OrderFit& f : fits) out.fitted_orders.push_back(lifted(f.state));
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace stengmc
