@@ -56,6 +56,9 @@ def bank_scores(path):
     with h5py.File(path, "r") as f:
         confusions = [f["maps/fits/confusion"][:], f["maps/misfits/confusion"][:]]
         boundary = float(f["maps"].attrs["misfit_ratio"])
+        line_se_bound = float(f["maps"].attrs["line_se_bound"])
+        line_se = f["records/log_stiffness_se"][:]
+        line_off = f["records/estimate_offset"][:]
         noise = f["records/noise_sigma"][:]
         residual = f["records/residual_sigma"][:]
         cmin = int(f["maps"].attrs["count_min"])
@@ -69,7 +72,8 @@ def bank_scores(path):
         if not valid[j]:
             continue
         misfit = residual[j] / noise[j] if noise[j] > 0 else 1.0
-        conf = confusions[1 if misfit > boundary else 0]
+        worst = max(line_se[line_off[j]:line_off[j + 1]], default=0.0)
+        conf = confusions[1 if misfit > boundary or worst > line_se_bound else 0]
         o = orders[off[j]:off[j + 1]].astype(int)
         e = evidence[off[j]:off[j + 1]]
         raw = np.exp(e - e.max())

@@ -116,8 +116,9 @@ void run(const CalibrateOptions& options) {
   {
     const ClassMaps& fits = bank.maps.of(FitClass::fits);
     const ClassMaps& misfits = bank.maps.of(FitClass::misfits);
-    std::printf("  fit classes: %zu records fit their noise (residual <= %.3g x the noise above the lines), %zu do not%s\n",
-                fits.records, bank.maps.misfit_ratio, misfits.records,
+    std::printf("  fit classes: %zu records fit their noise (residual <= %.3g x the noise above the lines) and pin every "
+                "line (ln k error <= %.2g), %zu do not%s\n",
+                fits.records, bank.maps.misfit_ratio, bank.maps.line_se_bound, misfits.records,
                 fits.pooled || misfits.pooled ? " (a class of fewer than 60 records takes every record's maps)" : "");
   }
   std::printf("On the bank's own records (in-sample; the naive FFT count at its best threshold, %g x the local floor):\n%s",

@@ -127,7 +127,27 @@ double misfit_boundary(const Samples& samples, std::size_t count_max) {
   return std::max(DEFAULT_MISFIT_RATIO, right[std::clamp<std::size_t>(rank, 1, right.size()) - 1]);
 }
 
+//! The bound on the worst line's error: LINE_SE_QUANTILE of worst_line_se over the records
+//! counted right below the prior's largest count whose residual fits (the others are warned
+//! about already), at least DEFAULT_LINE_SE_BOUND.
+double line_se_boundary(const Samples& samples, std::size_t count_max, double misfit_ratio) {
+  std::vector<double> right;
+  for (const CalibrationSample* s : samples)
+    if (s->count == s->true_count() && s->count < count_max && noise_misfit(s->residual_sigma_v, s->noise_sigma_v) <= misfit_ratio)
+      right.push_back(worst_line_se(s->log_stiffness_se));
+  if (right.empty()) return DEFAULT_LINE_SE_BOUND;
+  std::sort(right.begin(), right.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(LINE_SE_QUANTILE * static_cast<double>(right.size())));
+  return std::max(DEFAULT_LINE_SE_BOUND, right[std::clamp<std::size_t>(rank, 1, right.size()) - 1]);
+}
+
 }  // namespace
+
+double worst_line_se(const std::vector<double>& log_stiffness_se) {
+  double worst = 0.0;
+  for (double se : log_stiffness_se) worst = std::max(worst, se);
+  return worst;
+}
 
 double median_log_scale(std::vector<double> k, std::vector<double> se) {
   const std::size_t n = k.size();
@@ -174,9 +194,12 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
   // The fit classes; a class with too few records of its own for a confusion is learnt from
   // all of them (on the ideal device nearly every record fits).
   maps.misfit_ratio = misfit_boundary(valid, prior.count_max);
+  maps.line_se_bound = line_se_boundary(valid, prior.count_max, maps.misfit_ratio);
   std::array<Samples, FIT_CLASSES> by_class;
-  for (const CalibrationSample* s : valid)
-    by_class[static_cast<std::size_t>(maps.fit_class(noise_misfit(s->residual_sigma_v, s->noise_sigma_v)))].push_back(s);
+  for (const CalibrationSample* s : valid) {
+    const FitClass c = maps.fit_class(noise_misfit(s->residual_sigma_v, s->noise_sigma_v), worst_line_se(s->log_stiffness_se));
+    by_class[static_cast<std::size_t>(c)].push_back(s);
+  }
   for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
     const bool pooled = by_class[c].size() < CONFUSION_RECORDS;
     maps.classes[c] = fit_class_maps(pooled ? valid : by_class[c], prior);
@@ -220,7 +243,11 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
   CalibratedEstimate out;
   out.calibrated = maps != nullptr;
   out.misfit = noise_misfit(e.residual_sigma_v, e.noise.sigma_v);
-  out.fit_class = fit_class_of(out.misfit, maps ? maps->misfit_ratio : DEFAULT_MISFIT_RATIO);
+  std::vector<double> line_se;
+  for (const EstimatedLine& line : e.lines) line_se.push_back(line.log_stiffness_se);
+  out.worst_line_se = worst_line_se(line_se);
+  out.fit_class = maps ? maps->fit_class(out.misfit, out.worst_line_se)
+                       : fit_class_of(out.misfit, out.worst_line_se, DEFAULT_MISFIT_RATIO, DEFAULT_LINE_SE_BOUND);
   const ClassMaps* own = maps ? &maps->of(out.fit_class) : nullptr;
   const std::size_t counts = prior.count_max - prior.count_min + 1;
   for (std::size_t i = 0; i < counts; ++i) out.counts.push_back(prior.count_min + i);

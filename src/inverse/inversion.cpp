@@ -169,7 +169,7 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
   }
   out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
                         (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
-  if (c.fit_class == FitClass::misfits) out.verdict.push_back(residual_pointer(e));
+  if (c.misfit > (maps_ ? maps_->misfit_ratio : DEFAULT_MISFIT_RATIO)) out.verdict.push_back(residual_pointer(e));
   if (atoms_->check_error() > 1e-2)
     out.verdict.push_back("The atoms match the forward model to " + percent(atoms_->check_error()) +
                           " only (stick modulation at this belt velocity): expect biased stiffnesses.");
@@ -181,17 +181,25 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
   if (e.more_than_prior_allows)
     out.warnings.push_back("the record seems to hold more sliding asperities than the prior's largest count (" +
                            std::to_string(setup_->prior.count_max) + "): the count is cut at that limit");
-  if (c.fit_class == FitClass::misfits) {
-    // The one warning on the fit: what the bank shows to go with wrong counts (docs/inverse.md,
-    // "warnings"). The residual's shape, which does not tell right from wrong, is in the verdict.
-    const double boundary = maps_ ? maps_->misfit_ratio : DEFAULT_MISFIT_RATIO;
+  // The warnings on the fit: what the bank shows to go with wrong counts (docs/inverse.md,
+  // "warnings"), one per reason the record falls in the second fit class. The residual's
+  // shape, which does not tell right from wrong, is in the verdict.
+  const double misfit_ratio = maps_ ? maps_->misfit_ratio : DEFAULT_MISFIT_RATIO;
+  const double line_se_bound = maps_ ? maps_->line_se_bound : DEFAULT_LINE_SE_BOUND;
+  if (c.misfit > misfit_ratio)
     out.warnings.push_back("the fit's residual (" + number(e.residual_sigma_v, "%.3g") + " V rms) is " + number(c.misfit, "%.3g") +
                            " x the noise above the lines (" + number(e.noise.sigma_v, "%.3g") + " V), more than " +
-                           number(boundary, "%.3g") +
+                           number(misfit_ratio, "%.3g") +
                            (maps_ ? " (what 85 % of the bank's records counted right stay below)" : " (no bank: 10 %)") +
                            ": the model does not fit to the noise, and counts of such records are wrong far more often" +
                            misfit_interval_note(maps_));
-  }
+  if (c.worst_line_se > line_se_bound)
+    out.warnings.push_back("a line's stiffness is known to " + percent(c.worst_line_se) + " (1 sigma in ln k), more than " +
+                           percent(line_se_bound) +
+                           (maps_ ? " (what 95 % of the bank's records counted right that fit stay below)" : " (no bank: 0.1 %)") +
+                           ": the record does not pin it, as it pins the lines of real asperities; such a line is often "
+                           "one the search added to absorb what the model does not describe, and counts of such records "
+                           "are wrong far more often" + misfit_interval_note(maps_));
   // A record whose amplitude no count of this device's atoms can give: other units (mV, uV,
   // an ADC's counts) or other known parameters. n atoms give at most n times one atom's rms
   // (all in phase) and, with the plateau every atom shares, not much below one atom's.

@@ -106,6 +106,7 @@ void encode_maps(ByteEncoder& out, const CalibrationMaps& m) {
   out.u64(m.count_min);
   out.u64(m.count_max);
   out.f64(m.misfit_ratio);
+  out.f64(m.line_se_bound);
   for (const ClassMaps& c : m.classes) {
     out.rows(c.confusion);
     out.vector(c.median_score_quantile);
@@ -128,6 +129,7 @@ CalibrationMaps decode_maps(BankDecoder& in) {
   m.count_min = in.whole();
   m.count_max = in.whole();
   m.misfit_ratio = in.number();
+  m.line_se_bound = in.number();
   for (ClassMaps& c : m.classes) {
     c.confusion = in.rows();
     c.median_score_quantile = in.vector();

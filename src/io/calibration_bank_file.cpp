@@ -24,12 +24,13 @@ namespace stengmc {
 namespace {
 
 constexpr const char* FILE_TYPE = "stengmc-calibration-bank";
+// 5: the fit classes' second boundary, /maps@line_se_bound (a line the record does not pin).
 // 4: the maps learnt apart for the two fit classes (/maps/fits, /maps/misfits; issue 23).
 // 3: the atoms as a shape family (issue 23; inverse/atom_shapes.hpp), every table and the
 // numeric attributes of /atoms and /maps with their checksum (io/checksummed_tables.hpp).
 // 2 held the old atom table (with checksums), 1 that table without checksums: a damaged
 // bank was used silently.
-constexpr std::int64_t FORMAT_VERSION = 4;
+constexpr std::int64_t FORMAT_VERSION = 5;
 const std::string REMAKE = "make the bank again with stengmc calibrate";
 
 //! The numeric attributes of /atoms and /maps, in the order their checksum covers them.
@@ -37,7 +38,7 @@ const std::vector<std::string> ATOM_ATTRIBUTES = {"min_pi", "max_pi", "min_zeta"
                                                   "breakaway_samples", "check_error", "log_pi_step", "zeta_node_count",
                                                   "theta_step", "after_breakaway", "before_breakaway", "split_pi", "blend",
                                                   "tail_fit_span"};
-const std::vector<std::string> MAP_ATTRIBUTES = {"count_min", "count_max", "misfit_ratio", "naive_threshold_index",
+const std::vector<std::string> MAP_ATTRIBUTES = {"count_min", "count_max", "misfit_ratio", "line_se_bound", "naive_threshold_index",
                                                  "naive_threshold", "records", "bank_count_rmse", "bank_exact_rate",
                                                  "bank_naive_rmse", "bank_naive_exact_rate"};
 const std::vector<std::string> CLASS_ATTRIBUTES = {"line_error_scale", "records", "pooled"};
@@ -208,6 +209,7 @@ void write_calibration_bank(const std::string& path, const CalibrationBank& bank
                            {{"count_min", count(m.count_min), true},
                             {"count_max", count(m.count_max), true},
                             {"misfit_ratio", m.misfit_ratio},
+                            {"line_se_bound", m.line_se_bound},
                             {"naive_threshold_index", count(m.naive_threshold_index), true},
                             {"naive_threshold", naive_count_thresholds()[m.naive_threshold_index]},
                             {"records", count(m.records), true},
@@ -243,6 +245,10 @@ void check_bank_format(const std::string& path, const Hdf5Reader& f) {
   if (*version == 3)
     throw InputError(path + ": calibration bank format 3 holds one set of maps for every record, which this stengmc "
                      "learns apart for records that fit their noise and records that do not; this stengmc reads format " +
+                     std::to_string(FORMAT_VERSION) + ": " + REMAKE);
+  if (*version == 4)
+    throw InputError(path + ": calibration bank format 4 sorts records into fit classes by their residual alone, and "
+                     "this stengmc also by how well the record pins each line; this stengmc reads format " +
                      std::to_string(FORMAT_VERSION) + ": " + REMAKE);
   if (*version > FORMAT_VERSION)
     throw InputError(path + ": calibration bank format " + std::to_string(*version) + " is newer than this stengmc reads (" +
@@ -283,6 +289,7 @@ CalibrationMaps read_maps(const ChecksumReader& tables) {
   m.count_min = whole("count_min");
   m.count_max = whole("count_max");
   m.misfit_ratio = number.at("misfit_ratio");
+  m.line_se_bound = number.at("line_se_bound");
   m.naive_threshold_index = whole("naive_threshold_index");
   m.naive_threshold = number.at("naive_threshold");
   m.records = whole("records");

@@ -11,8 +11,8 @@
 //!                    and the breakaway-aligned ones (breakaway_nodes, _values, _slopes,
 //!                    breakaway_share); tail_log_amplitude, tail_phase per node; attributes the
 //!                    range (min/max_pi, min/max_zeta), sample counts, check_error and settings
-//!   /maps/           naive_thresholds; attributes count_min, count_max, misfit_ratio (the fit
-//!                    classes' boundary), naive_threshold, records and the bank's own figures
+//!   /maps/           naive_thresholds; attributes count_min, count_max, misfit_ratio and line_se_bound
+//!                    (the fit classes' boundaries), naive_threshold, records and the bank's own figures
 //!   /maps/fits/, /maps/misfits/  each fit class's maps (inverse/calibration_maps.hpp):
 //!                    confusion (counts x counts, row n-hat, column true n), median_score_quantile,
 //!                    sd_score_quantile (per bin of 4 counts of n-hat); attributes
@@ -20,7 +20,7 @@
 //!   /records/        one entry per simulated record: truth, raw estimate, naive counts;
 //!                    flat k lists with offsets (true_stiffness / true_offset, stiffness,
 //!                    log_stiffness_se / estimate_offset)
-//! bank_format_version 4 (3 with one set of maps is refused): every table carries its checksum, and so do the numeric
+//! bank_format_version 5 (4 without line_se_bound and 3 with one set of maps are refused): every table carries its checksum, and so do the numeric
 //! attributes of /atoms and /maps (io/checksummed_tables.hpp); every reader verifies them
 //! all, so a damaged bank is refused naming the table, never used. Format 1 (the old atom
 //! table, no checksums) and format 2 (the old atom table with checksums) are refused with

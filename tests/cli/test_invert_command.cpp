@@ -541,8 +541,8 @@ TEST_F(InvertCommand, ADamagedBankIsRefusedNamingTheTable) {
   }
 }
 
-//! Format 1 banks carry no checksums, format 2 ones the old atom table and format 3 ones one set
-//! of maps for both fit classes: refused with what
+//! Format 1 banks carry no checksums, format 2 ones the old atom table, format 3 ones one set
+//! of maps for both fit classes and format 4 ones no line_se_bound: refused with what
 //! to do, as are format versions that are no versions (bank_format_version = -1 and
 //! format_version = -1 were accepted).
 TEST_F(InvertCommand, ABankOfAnOldOrInvalidFormatIsRefused) {
@@ -553,12 +553,16 @@ TEST_F(InvertCommand, ABankOfAnOldOrInvalidFormatIsRefused) {
   expect_bank_refused(known, bank, {"calibration bank format 1 carries no checksums", "make the bank again with stengmc calibrate"});
   bank = bank_copy(scratch, source);
   rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{2});
-  expect_bank_refused(known, bank, {"calibration bank format 2 holds the atoms as a table", "reads format 4",
+  expect_bank_refused(known, bank, {"calibration bank format 2 holds the atoms as a table", "reads format 5",
                                     "make the bank again with stengmc calibrate"});
   bank = bank_copy(scratch, source);
   rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{3});
-  expect_bank_refused(known, bank, {"calibration bank format 3 holds one set of maps", "reads format 4",
+  expect_bank_refused(known, bank, {"calibration bank format 3 holds one set of maps", "reads format 5",
                                     "make the bank again with stengmc calibrate"});
+  bank = bank_copy(scratch, source);
+  rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{4});
+  expect_bank_refused(known, bank, {"calibration bank format 4 sorts records into fit classes by their residual alone",
+                                    "reads format 5", "make the bank again with stengmc calibrate"});
   bank = bank_copy(scratch, source);
   rewrite_attribute(bank, "/", "bank_format_version", std::int64_t{-1});
   expect_bank_refused(known, bank, {"bank_format_version -1 is not a valid version"});

@@ -199,7 +199,8 @@ TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
   std::printf("broadened prior, held-out coverage of the 90 %% intervals: n %.3f (%zu records), median %.3f (%zu), "
               "sd(ln k) %.3f (%zu)\n",
               count_coverage, coverage.records, median_coverage, coverage.median_records, sd_coverage, coverage.sd_records);
-  // The warning on the fit is the misfit class's (Inverter::invert).
+  // The warnings on the fit are the misfit class's (Inverter::invert): a residual above the
+  // noise, or a line the record does not pin.
   std::size_t wrong = 0, wrong_flagged = 0, right = 0, right_flagged = 0, top_right = 0, top_right_flagged = 0;
   for (const CalibrationSample& s : held_out.samples) {
     if (!s.valid) continue;
@@ -208,9 +209,10 @@ TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
     else if (s.count < bank.setup.prior.count_max) ++right, right_flagged += flagged;
     else ++top_right, top_right_flagged += flagged;
   }
-  std::printf("the misfit warning (residual > %.3g x the noise) on %zu of %zu wrong counts, %zu of %zu right ones below the "
-              "prior's top count, %zu of %zu right ones at it; bank classes: %zu fit, %zu do not\n",
-              bank.maps.misfit_ratio, wrong_flagged, wrong, right_flagged, right, top_right_flagged, top_right,
+  std::printf("the misfit warnings (residual > %.3g x the noise, or a line's ln k error > %.2g) on %zu of %zu wrong counts, "
+              "%zu of %zu right ones below the prior's top count, %zu of %zu right ones at it; bank classes: %zu fit, %zu do "
+              "not\n",
+              bank.maps.misfit_ratio, bank.maps.line_se_bound, wrong_flagged, wrong, right_flagged, right, top_right_flagged, top_right,
               bank.maps.of(FitClass::fits).records, bank.maps.of(FitClass::misfits).records);
   // The count's interval is a run of whole counts: where the estimator is right in ~90 % of a
   // bin's records, the interval holds a neighbour too and covers ~0.99 (measured 0.990). That

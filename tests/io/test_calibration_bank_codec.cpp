@@ -107,6 +107,7 @@ TEST(BankCodec, AStoredBankRoundTripsBitwise) {
   bank.maps.count_min = 1;
   bank.maps.count_max = 2;
   bank.maps.misfit_ratio = 1.375;
+  bank.maps.line_se_bound = 2.5e-3;
   bank.maps.classes[0].confusion = {{0.75, 0.25}, {-0.0, 1.0}};
   bank.maps.classes[0].median_score_quantile = {1.5};
   bank.maps.classes[0].sd_score_quantile = {2.5};
@@ -131,6 +132,7 @@ TEST(BankCodec, AStoredBankRoundTripsBitwise) {
   expect_same(back.atoms, bank.atoms);
   EXPECT_EQ(back.maps.records, bank.maps.records);
   EXPECT_EQ(bits(back.maps.misfit_ratio), bits(bank.maps.misfit_ratio));
+  EXPECT_EQ(bits(back.maps.line_se_bound), bits(bank.maps.line_se_bound));
   for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
     SCOPED_TRACE(c);
     const ClassMaps &was = bank.maps.classes[c], &is = back.maps.classes[c];
