@@ -18,6 +18,10 @@
 #   scripts/inverse_validation.sh          both parts
 #   scripts/inverse_validation.sh ideal    issue 11's part only
 #   scripts/inverse_validation.sh real     issue 23's part only
+#   scripts/inverse_validation.sh raw      issue 23's families inverted without a bank (the
+#                                          estimator's own counts and its rules without a bank;
+#                                          no bank to make: FAMILY_SIZE=40 takes ~1 h on two cores);
+#                                          table in results/inverse/validation_raw_table.md
 # Environment (defaults in brackets): BANK_RECORDS, records per bank [the device's
 # calibration_records, 2000]: a smaller bank calibrates the intervals more coarsely, but it
 # is what two cores can afford in a working session (a broadened record costs ~9 s);
@@ -52,6 +56,30 @@ if [[ $part == both || $part == ideal ]]; then
   /usr/bin/python3 scripts/inverse_validation_table.py "${args[@]}" | tee "$out/validation_table.md"
 fi
 
+# family_signals FAMILY FOLDER: the family's signals, its first FAMILY_SIZE realisations.
+family_signals() {
+  local study=studies/inverse/validation/$1.toml
+  if [[ -n ${FAMILY_SIZE:-} ]]; then
+    sed "s/^realisations = 100$/realisations = $FAMILY_SIZE/" "$study" > "$2/$1.toml"
+    study=$2/$1.toml
+  fi
+  [[ -f $2/$1.h5 ]] || "$bin" run "$study" -o "$2/$1.h5" > /dev/null
+}
+
+if [[ $part == raw ]]; then
+  families=$out/families${FAMILY_SIZE:-}
+  mkdir -p "$families"
+  args=()
+  for family in ideal loads onset tolerance noise vb1 all pure_noise; do
+    vb=10; [[ $family == vb1 || $family == all ]] && vb=1
+    family_signals "$family" "$families"
+    raw=$families/raw_$family.h5
+    [[ -f $raw ]] || "$bin" invert "$families/$family.h5" --known "studies/inverse/device_vb${vb}_real.toml" -o "$raw" > "${raw%.h5}.log"
+    args+=("$families/$family.h5" "$raw")
+  done
+  /usr/bin/python3 scripts/inverse_raw_table.py "${args[@]}" | tee "$out/validation_raw_table.md"
+fi
+
 if [[ $part == both || $part == real ]]; then
   families=$out/families${FAMILY_SIZE:-}
   mkdir -p "$families"
@@ -61,12 +89,7 @@ if [[ $part == both || $part == real ]]; then
     vb=10; [[ $family == vb1 || $family == all ]] && vb=1
     device=studies/inverse/device_vb${vb}_real.toml
     signals=$families/$family.h5
-    study=studies/inverse/validation/$family.toml
-    if [[ -n ${FAMILY_SIZE:-} ]]; then
-      sed "s/^realisations = 100$/realisations = $FAMILY_SIZE/" "$study" > "$families/$family.toml"
-      study=$families/$family.toml
-    fi
-    [[ -f $signals ]] || "$bin" run "$study" -o "$signals" > /dev/null
+    family_signals "$family" "$families"
     invert "$signals" "$device" "$out/device_vb${vb}_real_bank.h5" "$families/inverted_$family.h5"
     args+=("$signals" "$families/inverted_$family.h5" "$out/device_vb${vb}_real_bank.h5")
   done

@@ -50,6 +50,17 @@ def sd_log(k):
     return float(np.std(np.log(k), ddof=1)) if len(k) >= 2 else 0.0
 
 
+def worst_line_se(k, se):
+    """The largest ln k error among the lines apart from every other by more than it
+    (stengmc's worst_line_se, inverse/calibration_maps.hpp)."""
+    worst = 0.0
+    for i in range(len(k)):
+        others = np.delete(np.asarray(k, float), i)
+        if not np.any(np.abs(np.log(k[i] / others)) <= se[i]):
+            worst = max(worst, float(se[i]))
+    return worst
+
+
 def bank_scores(path):
     """Per bank record: the calibrated P(n) as invert computes it (raw posterior through its
     fit class's confusion), and the true count: for the smoothed conformal sets."""
@@ -58,6 +69,7 @@ def bank_scores(path):
         boundary = float(f["maps"].attrs["misfit_ratio"])
         line_se_bound = float(f["maps"].attrs["line_se_bound"])
         line_se = f["records/log_stiffness_se"][:]
+        line_k = f["records/stiffness"][:]
         line_off = f["records/estimate_offset"][:]
         noise = f["records/noise_sigma"][:]
         residual = f["records/residual_sigma"][:]
@@ -72,7 +84,7 @@ def bank_scores(path):
         if not valid[j]:
             continue
         misfit = residual[j] / noise[j] if noise[j] > 0 else 1.0
-        worst = max(line_se[line_off[j]:line_off[j + 1]], default=0.0)
+        worst = worst_line_se(line_k[line_off[j]:line_off[j + 1]], line_se[line_off[j]:line_off[j + 1]])
         conf = confusions[1 if misfit > boundary or worst > line_se_bound else 0]
         o = orders[off[j]:off[j + 1]].astype(int)
         e = evidence[off[j]:off[j + 1]]

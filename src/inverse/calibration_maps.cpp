@@ -134,7 +134,7 @@ double line_se_boundary(const Samples& samples, std::size_t count_max, double mi
   std::vector<double> right;
   for (const CalibrationSample* s : samples)
     if (s->count == s->true_count() && s->count < count_max && noise_misfit(s->residual_sigma_v, s->noise_sigma_v) <= misfit_ratio)
-      right.push_back(worst_line_se(s->log_stiffness_se));
+      right.push_back(worst_line_se(s->stiffness, s->log_stiffness_se));
   if (right.empty()) return DEFAULT_LINE_SE_BOUND;
   std::sort(right.begin(), right.end());
   const auto rank = static_cast<std::size_t>(std::ceil(LINE_SE_QUANTILE * static_cast<double>(right.size())));
@@ -143,9 +143,15 @@ double line_se_boundary(const Samples& samples, std::size_t count_max, double mi
 
 }  // namespace
 
-double worst_line_se(const std::vector<double>& log_stiffness_se) {
+double worst_line_se(const std::vector<double>& stiffness, const std::vector<double>& log_stiffness_se) {
   double worst = 0.0;
-  for (double se : log_stiffness_se) worst = std::max(worst, se);
+  for (std::size_t i = 0; i < stiffness.size(); ++i) {
+    const double se = log_stiffness_se[i];
+    bool apart = true;
+    for (std::size_t j = 0; j < stiffness.size() && apart; ++j)
+      apart = j == i || !(std::abs(std::log(stiffness[i] / stiffness[j])) <= se);
+    if (apart) worst = std::max(worst, se);
+  }
   return worst;
 }
 
@@ -197,7 +203,7 @@ CalibrationMaps fit_calibration_maps(const std::vector<CalibrationSample>& sampl
   maps.line_se_bound = line_se_boundary(valid, prior.count_max, maps.misfit_ratio);
   std::array<Samples, FIT_CLASSES> by_class;
   for (const CalibrationSample* s : valid) {
-    const FitClass c = maps.fit_class(noise_misfit(s->residual_sigma_v, s->noise_sigma_v), worst_line_se(s->log_stiffness_se));
+    const FitClass c = maps.fit_class(noise_misfit(s->residual_sigma_v, s->noise_sigma_v), worst_line_se(s->stiffness, s->log_stiffness_se));
     by_class[static_cast<std::size_t>(c)].push_back(s);
   }
   for (std::size_t c = 0; c < FIT_CLASSES; ++c) {
@@ -243,9 +249,9 @@ CalibratedEstimate calibrate_estimate(const RecordEstimate& e, const Calibration
   CalibratedEstimate out;
   out.calibrated = maps != nullptr;
   out.misfit = noise_misfit(e.residual_sigma_v, e.noise.sigma_v);
-  std::vector<double> line_se;
-  for (const EstimatedLine& line : e.lines) line_se.push_back(line.log_stiffness_se);
-  out.worst_line_se = worst_line_se(line_se);
+  std::vector<double> line_k, line_se;
+  for (const EstimatedLine& line : e.lines) line_k.push_back(line.stiffness_n_per_m), line_se.push_back(line.log_stiffness_se);
+  out.worst_line_se = worst_line_se(line_k, line_se);
   out.fit_class = maps ? maps->fit_class(out.misfit, out.worst_line_se)
                        : fit_class_of(out.misfit, out.worst_line_se, DEFAULT_MISFIT_RATIO, DEFAULT_LINE_SE_BOUND);
   const ClassMaps* own = maps ? &maps->of(out.fit_class) : nullptr;
