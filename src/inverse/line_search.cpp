@@ -16,9 +16,8 @@ namespace {
 // (their plateaus and first cycles overlap), are refitted with it on the greedy path.
 constexpr double NEIGHBOURHOOD_WIDTHS = 8.0;
 constexpr double NEIGHBOURHOOD_TIME_S = 2e-6;
-// An order this far (in chi^2, RSS / sigma^2 plus the loads' prior) above the best before the
-// full refits is refitted with only HOPELESS_ITERATIONS steps (LineSearch::refit).
-constexpr double HOPELESS_CHI2_GAP = 1000.0;
+// An order HOPELESS_CHI2_GAP above the best before the full refits is refitted with only
+// HOPELESS_ITERATIONS steps (LineSearch::refit).
 constexpr std::size_t HOPELESS_ITERATIONS = 5;
 // The pair re-seat (LineSearch::exchange): PAIR_ONSETS placements proposed for each atom of a
 // pair, every combination screened, the best EXCHANGES_REFITTED refitted.

@@ -19,6 +19,11 @@
 
 namespace stengmc {
 
+//! An order this far (in chi^2: RSS / sigma^2 plus the loads' prior) above the best has a
+//! posterior weight below e^{-500} of the best's: LineSearch::refit refits it with a few steps
+//! only, and the nested searches do not offer it as a start (nested_search.cpp).
+inline constexpr double HOPELESS_CHI2_GAP = 1000.0;
+
 struct LineSearchOptions {
   std::size_t max_iterations = 60;   //!< per Levenberg–Marquardt refinement
   //! The greedy path stops when the best addition, jointly refitted, lowers the squared
@@ -48,9 +53,9 @@ class LineSearch {
   void refit(std::vector<OrderFit>& fits, std::size_t first);
 
   //! A fit of this search's layout from a start found elsewhere (the nested model's fit of an
-  //! order, nested_search.hpp): refitted in full; then, while it does not fit to the noise,
-  //! its atoms' placements chosen again (replace) and its atoms re-seated (reseat) as the
-  //! greedy path's own orders are, and refitted in full again.
+  //! order, nested_search.hpp): refitted in full; its atoms' placements chosen again (replace)
+  //! while that improves it, up to reseat_sweeps times; its atoms re-seated (reseat) as the
+  //! greedy path's own orders are; and refitted in full again.
   OrderFit polish(FitState start);
 
  private:

@@ -6,9 +6,6 @@
 namespace stengmc {
 
 namespace {
-// As LineSearch::refit: an order this far (chi^2) above the best has a posterior weight below
-// e^{-500} of the best's.
-constexpr double HOPELESS_CHI2_GAP = 1000.0;
 // A model fits a record to its noise when its best order's whitened RSS lies within this many
 // standard deviations of chi^2_M's mean (M samples, sd sqrt(2 M)): 1.07 x M sigma^2 at M = 10^4.
 // (The held-out ideal family's true orders under the ideal model: 0.97-1.05.)
