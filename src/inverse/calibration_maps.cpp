@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/error.hpp"
 #include "inverse/naive_count.hpp"
@@ -112,6 +113,15 @@ ClassMaps fit_class_maps(const Samples& samples, const InversePrior& prior) {
   return maps;
 }
 
+//! The ceil(q N)-th smallest of `values`, at least `floor` (`floor` when there are none): a
+//! fit class boundary that a share q of the bank's right answers stay within.
+double quantile_at_least(std::vector<double> values, double q, double floor) {
+  if (values.empty()) return floor;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return std::max(floor, values[std::clamp<std::size_t>(rank, 1, values.size()) - 1]);
+}
+
 //! The fit classes' boundary: MISFIT_QUANTILE of noise_misfit over the records counted right
 //! below the prior's largest count, at least DEFAULT_MISFIT_RATIO. A count at the prior's top
 //! can be right because the prior stops there: a fit the atoms cannot make adds atoms up to
@@ -121,10 +131,7 @@ double misfit_boundary(const Samples& samples, std::size_t count_max) {
   std::vector<double> right;
   for (const CalibrationSample* s : samples)
     if (s->count == s->true_count() && s->count < count_max) right.push_back(noise_misfit(s->residual_sigma_v, s->noise_sigma_v));
-  if (right.empty()) return DEFAULT_MISFIT_RATIO;
-  std::sort(right.begin(), right.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(MISFIT_QUANTILE * static_cast<double>(right.size())));
-  return std::max(DEFAULT_MISFIT_RATIO, right[std::clamp<std::size_t>(rank, 1, right.size()) - 1]);
+  return quantile_at_least(std::move(right), MISFIT_QUANTILE, DEFAULT_MISFIT_RATIO);
 }
 
 //! The bound on the worst line's error: LINE_SE_QUANTILE of worst_line_se over the records
@@ -135,10 +142,7 @@ double line_se_boundary(const Samples& samples, std::size_t count_max, double mi
   for (const CalibrationSample* s : samples)
     if (s->count == s->true_count() && s->count < count_max && noise_misfit(s->residual_sigma_v, s->noise_sigma_v) <= misfit_ratio)
       right.push_back(worst_line_se(s->stiffness, s->log_stiffness_se));
-  if (right.empty()) return DEFAULT_LINE_SE_BOUND;
-  std::sort(right.begin(), right.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(LINE_SE_QUANTILE * static_cast<double>(right.size())));
-  return std::max(DEFAULT_LINE_SE_BOUND, right[std::clamp<std::size_t>(rank, 1, right.size()) - 1]);
+  return quantile_at_least(std::move(right), LINE_SE_QUANTILE, DEFAULT_LINE_SE_BOUND);
 }
 
 }  // namespace
