@@ -99,22 +99,33 @@ NoiseSpectrum fit_noise_spectrum(std::span<const double> residual) {
   // both >= 0; the alpha whose fit is closest in log.
   NoiseSpectrum best;
   double best_misfit = INFINITY;
+  std::vector<double> shape(power.size());
   for (int a = 0; a <= 30; ++a) {
     const double alpha = 0.5 + 1.5 * a / 30.0;
-    double s11 = 0, s12 = 0, s22 = 0, b1 = 0, b2 = 0;
-    for (std::size_t j = 0; j < power.size(); ++j) {
-      const double q = weight[j] / (power[j] * power[j]);
-      const double x = std::pow(centre[j], -alpha);
-      s11 += q, s12 += q * x, s22 += q * x * x, b1 += q * power[j], b2 += q * x * power[j];
+    for (std::size_t j = 0; j < power.size(); ++j) shape[j] = std::pow(centre[j], -alpha);
+    // Iteratively reweighted: a band's error is relative to its true power, so its weight is
+    // its size over the model's power squared. Weights from the band's own power (the first
+    // pass only) favour the bands that came out low: the single-bin bands at the lowest
+    // frequencies scatter as exponential variables, and 1/P^2 of one drawn near zero outweighs
+    // all the others (white noise was fitted 0.84 x its variance, 70 % 1/f noise as 30 %).
+    double white = 0.0, coloured = 0.0;
+    for (int pass = 0; pass < 6; ++pass) {
+      double s11 = 0, s12 = 0, s22 = 0, b1 = 0, b2 = 0;
+      for (std::size_t j = 0; j < power.size(); ++j) {
+        const double x = shape[j];
+        const double expected = pass == 0 ? power[j] : std::max(white + coloured * x, 1e-300);
+        const double q = weight[j] / (expected * expected);
+        s11 += q, s12 += q * x, s22 += q * x * x, b1 += q * power[j], b2 += q * x * power[j];
+      }
+      const double det = s11 * s22 - s12 * s12;
+      white = det > 0.0 ? (b1 * s22 - b2 * s12) / det : b1 / s11;
+      coloured = det > 0.0 ? (s11 * b2 - s12 * b1) / det : 0.0;
+      if (coloured < 0.0) coloured = 0.0, white = b1 / s11;
+      if (white < 0.0) white = 0.0, coloured = b2 / s22;
     }
-    const double det = s11 * s22 - s12 * s12;
-    double white = det > 0.0 ? (b1 * s22 - b2 * s12) / det : b1 / s11;
-    double coloured = det > 0.0 ? (s11 * b2 - s12 * b1) / det : 0.0;
-    if (coloured < 0.0) coloured = 0.0, white = b1 / s11;
-    if (white < 0.0) white = 0.0, coloured = b2 / s22;
     double misfit = 0.0;
     for (std::size_t j = 0; j < power.size(); ++j) {
-      const double model = std::max(white + coloured * std::pow(centre[j], -alpha), 1e-300);
+      const double model = std::max(white + coloured * shape[j], 1e-300);
       misfit += weight[j] * std::pow(std::log(power[j] / model), 2);
     }
     if (misfit < best_misfit) best_misfit = misfit, best = {white, coloured, alpha};
