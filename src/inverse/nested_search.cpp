@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace stengmc {
 
@@ -48,11 +50,11 @@ NestedSearch::NestedSearch(const RecordModel& model, const InversePrior& prior, 
 NestedSearch::~NestedSearch() = default;
 
 NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v, const FitLayout& layout,
-                               std::size_t max_count, std::size_t min_count) {
+                               std::size_t max_count, std::size_t min_count, const WhitenedLevel& whitened_level) {
   NestedFits out;
   const double s2 = sigma_v * sigma_v;
   const auto samples = static_cast<double>(voltage.size());
-  const double fits_rss = (1.0 + FITS_SIGMAS * std::sqrt(2.0 / samples)) * samples * s2;
+  const double fits_chi2 = (1.0 + FITS_SIGMAS * std::sqrt(2.0 / samples)) * samples;
   // A nested fit's atoms carry their loads (N x the shared factor, record_fit.cpp); a layout of
   // per-atom loads has no shared factor.
   auto lifted = [&](const FitState& state) {
@@ -77,7 +79,22 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     for (const OrderFit& f : fits)
       if (!f.state.atoms.empty() && f.normal_matrix.size() > 0 && f.residual_v2 / s2 + f.penalty <= best + HOPELESS_CHI2_GAP)
         out.starts.push_back(lifted(f.state));
-    if (fits[best_order].residual_v2 <= fits_rss) {
+    // Judged against the noise the estimator will assume: white, or (coloured) the spectrum of
+    // this order's residual, whose 1/f part a white level, taken above the lines, leaves out:
+    // judged white, no nested model fitted a record of coloured noise and the broadened search
+    // ran on every one.
+    double chi2 = fits[best_order].residual_v2 / s2;
+    if (layout.coloured_noise && whitened_level) {
+      FitState state = fits[best_order].state;
+      const Whitener whitener = whitener_of(fit_noise_spectrum(fit.residual(state)), voltage.size());
+      const double noise_v = whitened_level(whitener);
+      fit.set_noise(whitener, noise_v);
+      chi2 = fit.whitened_rss(state) / (noise_v * noise_v);
+    }
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "nested level: best order %zu, chi2 / M %.4f (fits below %.4f)\n", best_order, chi2 / samples,
+                   fits_chi2 / samples);
+    if (chi2 <= fits_chi2) {
       for (const OrderFit& f : fits) out.fitted_orders.push_back(lifted(f.state));
       break;
     }

@@ -16,6 +16,7 @@
 //! fit of that order; the broadened fit of an order is replaced where a start reaches a better
 //! optimum. The model and its posterior stay the broadened prior's: the nested searches choose
 //! where to look, not what is believed.
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -42,7 +43,9 @@ struct NestedFits {
   std::vector<FitState> starts;
   //! Every order (index n: n atoms) of the first model whose best order fits the record to its
   //! noise (whitened RSS / M sigma^2 within 5 standard deviations of chi^2_M / M, i.e. at most
-  //! 1 + 5 sqrt(2 / M)); empty when none does, and then the broadened search is needed.
+  //! 1 + 5 sqrt(2 / M)); empty when none does, and then the broadened search is needed. Under a
+  //! prior of coloured noise the RSS is the one whitened by the noise spectrum fitted to that
+  //! order's residual, against that spectrum's level, as the estimator itself will judge it.
   std::vector<FitState> fitted_orders;
 };
 
@@ -57,10 +60,14 @@ class NestedSearch {
   //! True when the prior has nested priors.
   [[nodiscard]] bool applies() const { return !levels_.empty(); }
 
-  //! The nested models' fits of `voltage` (white noise of level `sigma_v`), simplest first, as
-  //! states of the broadened `layout` (a nested fit is a point of it).
+  //! The level [V] of the noise a whitener leaves, the model's own floor included (the
+  //! estimator's rule; used only when the broadened layout has coloured noise).
+  using WhitenedLevel = std::function<double(const Whitener&)>;
+
+  //! The nested models' fits of `voltage` (searched as white noise of level `sigma_v`),
+  //! simplest first, as states of the broadened `layout` (a nested fit is a point of it).
   [[nodiscard]] NestedFits search(std::span<const double> voltage, double sigma_v, const FitLayout& layout,
-                                  std::size_t max_count, std::size_t min_count);
+                                  std::size_t max_count, std::size_t min_count, const WhitenedLevel& whitened_level = {});
 
  private:
   struct Level;

@@ -108,8 +108,18 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   // noise its orders are the fits, evaluated in the broadened model; else the broadened search.
   // Either way each nested order refitted in full is a start, polished in the broadened model,
   // that replaces its order's fit where it reaches a better optimum.
+  // The noise level a whitener leaves: its innovation, with the model's floor on the whitened
+  // record's power above it.
+  auto whitened_level = [&](const Whitener& whitener) {
+    std::vector<double> whitened(voltage.begin(), voltage.end());
+    for (double& v : whitened) v -= mean;
+    whitener.apply(whitened, whitened);
+    const double innovation2 = whitener.innovation_sigma_v() * whitener.innovation_sigma_v();
+    return with_floor(innovation2, std::max(0.0, mean_square(whitened) - innovation2));
+  };
   NestedFits nested;
-  if (nested_.applies()) nested = nested_.search(voltage, sigma, layout_, prior_.count_max + 1, prior_.count_min);
+  if (nested_.applies())
+    nested = nested_.search(voltage, sigma, layout_, prior_.count_max + 1, prior_.count_min, whitened_level);
   std::vector<OrderFit> fits;
   if (nested.fitted_orders.empty()) fits = search.search(start, prior_.count_max + 1, prior_.count_min);
   for (FitState& s : nested.fitted_orders) fits.push_back(fit.refine(std::move(s), {}, true, false, 0));
@@ -131,11 +141,7 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     const std::vector<double> r = fit.residual(chosen);
     out.spectrum = fit_noise_spectrum(r);
     const Whitener whitener = whitener_of(out.spectrum, samples);
-    std::vector<double> whitened(voltage.begin(), voltage.end());
-    for (double& v : whitened) v -= mean;
-    whitener.apply(whitened, whitened);
-    const double innovation2 = whitener.innovation_sigma_v() * whitener.innovation_sigma_v();
-    sigma = with_floor(innovation2, std::max(0.0, mean_square(whitened) - innovation2));
+    sigma = whitened_level(whitener);
     fit.set_noise(whitener, sigma);
     const std::size_t first = std::max(white.best > 0 ? white.best - 1 : 0, static_cast<std::size_t>(prior_.count_min));
     for (std::size_t n = 0; n < first && n < fits.size(); ++n) fits[n].residual_v2 = fit.whitened_rss(fits[n].state);
