@@ -14,7 +14,10 @@ namespace stengmc {
 //! estimator version are refused (their calibration describes another estimator).
 //! 2: a broadened prior's search also starts from its nested models' fits (the ideal device,
 //! loads alone, onsets alone: nested_search.hpp).
-inline constexpr int ESTIMATOR_VERSION = 2;
+//! 3: the coloured noise's spectrum fitted with weights from its model (noise_whitening.cpp);
+//! nested models judged against that noise; atoms re-seated in every order that does not fit
+//! to the noise (fitting_chi2, line_search.hpp), not only above 1.5 M sigma^2.
+inline constexpr int ESTIMATOR_VERSION = 3;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

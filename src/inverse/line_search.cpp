@@ -32,6 +32,10 @@ constexpr std::size_t REPLACEMENTS = 3;
 LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options)
     : fit_(&fit), proposals_(&proposals), options_(options) {}
 
+double LineSearch::fitting_rss() const {
+  return fitting_chi2(fit_->record().size()) * fit_->sigma_v() * fit_->sigma_v();
+}
+
 std::vector<bool> LineSearch::neighbours(const FitState& state) const {
   const AtomModel& model = fit_->model().atoms().model();
   const double d = state.damping_rate_per_s;
@@ -137,7 +141,7 @@ std::vector<OrderFit> LineSearch::search(const FitState& start, std::size_t max_
   // is negligible whatever it becomes. (Where the greedy path left the fitting order with an
   // atom patching a local minimum, RecordEstimator's backward elimination removes it.) On
   // records the atoms fit this spares the re-seating, a third of the estimation's time.
-  const double noise_rss = options_.reseat_misfit * static_cast<double>(fit_->record().size()) * fit_->sigma_v() * fit_->sigma_v();
+  const double noise_rss = fitting_rss();
   const bool one_fits = std::any_of(fits.begin() + static_cast<std::ptrdiff_t>(std::min(first, fits.size())), fits.end(),
                                     [&](const OrderFit& f) { return f.residual_v2 < noise_rss; });
   if (!one_fits)
@@ -167,12 +171,10 @@ bool LineSearch::put_back(OrderFit& fit, const FitState& without, const AtomPara
 }
 
 void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
-  const std::size_t samples = fit_->record().size();
-  const double s2 = fit_->sigma_v() * fit_->sigma_v();
   for (std::size_t sweep = 0; sweep < sweeps; ++sweep) {
     bool improved = false;
     for (std::size_t i = 0; i < fit.state.atoms.size(); ++i) {
-      if (fit.residual_v2 < options_.reseat_misfit * static_cast<double>(samples) * s2) return;
+      if (fit.residual_v2 < fitting_rss()) return;
       FitState without = fit.state;
       const AtomParameters own = without.atoms[i];
       without.atoms.erase(without.atoms.begin() + static_cast<std::ptrdiff_t>(i));
@@ -187,7 +189,7 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
     const double before = fit.residual_v2;
     replace(fit);
     if (fit.residual_v2 < before) improved = true;
-    if (fit.residual_v2 >= options_.reseat_misfit * static_cast<double>(samples) * s2 && exchange(fit)) improved = true;
+    if (fit.residual_v2 >= fitting_rss() && exchange(fit)) improved = true;
     if (!improved) return;
   }
 }
@@ -198,7 +200,7 @@ bool LineSearch::exchange(OrderFit& fit) {
   const RecordModel& record_model = fit_->model();
   const std::size_t samples = fit_->record().size();
   const std::size_t n = fit.state.atoms.size();
-  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  const double fits_rss = fitting_rss();
   auto dot = [](std::span<const double> x, std::span<const double> y) {
     double s = 0.0;
     for (std::size_t k = 0; k < x.size(); ++k) s += x[k] * y[k];
@@ -292,8 +294,7 @@ bool LineSearch::exchange(OrderFit& fit) {
 void LineSearch::replace(OrderFit& fit) {
   const FitLayout& layout = fit_->layout();
   if (!layout.onset_free && !layout.load_per_atom) return;
-  const std::size_t samples = fit_->record().size();
-  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  const double fits_rss = fitting_rss();
   for (std::size_t i = 0; i < fit.state.atoms.size() && fit.residual_v2 >= fits_rss; ++i) {
     FitState without = fit.state;
     const AtomParameters own = without.atoms[i];
@@ -309,7 +310,7 @@ std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
   const RecordModel& record_model = fit_->model();
   const AtomModel& model = record_model.atoms().model();
   const std::size_t samples = fit_->record().size();
-  const double fits_rss = options_.reseat_misfit * static_cast<double>(samples) * fit_->sigma_v() * fit_->sigma_v();
+  const double fits_rss = fitting_rss();
   const double lo = std::log(record_model.atoms().min_stiffness()), hi = std::log(record_model.atoms().max_stiffness());
   std::optional<OrderFit> best;
   // On the ideal device (k alone free) two close lines are told apart by the greedy path: the

@@ -10,6 +10,7 @@
 //! which no single atom explains: the count stays identifiable where frequency resolution is
 //! lost, and the greedy step adds the second one. The orders the posterior weighs (the greedy
 //! count -1 .. +extra) are then refitted in full, the device's shared parameters with them.
+#include <cmath>
 #include <optional>
 #include <span>
 #include <vector>
@@ -24,6 +25,17 @@ namespace stengmc {
 //! only, and the nested searches do not offer it as a start (nested_search.cpp).
 inline constexpr double HOPELESS_CHI2_GAP = 1000.0;
 
+//! A fit fits a record of M samples to its noise when its whitened RSS / sigma^2 lies within
+//! this many standard deviations (sqrt(2 M)) of chi^2_M's mean M.
+inline constexpr double FITS_SIGMAS = 5.0;
+//! That bound on RSS / sigma^2: (1 + 5 sqrt(2 / M)) M, 1.07 M at M = 10^4 (the held-out ideal
+//! family's true orders under the ideal model: 0.97-1.05 M). The search re-seats the atoms of
+//! orders above it, and the nested searches stop at the first model whose best order is below.
+inline double fitting_chi2(std::size_t samples) {
+  const auto m = static_cast<double>(samples);
+  return (1.0 + FITS_SIGMAS * std::sqrt(2.0 / m)) * m;
+}
+
 struct LineSearchOptions {
   std::size_t max_iterations = 60;   //!< per Levenberg–Marquardt refinement
   //! The greedy path stops when the best addition, jointly refitted, lowers the squared
@@ -32,10 +44,6 @@ struct LineSearchOptions {
   double stop_fraction = 0.25;
   std::size_t extra_orders = 2;      //!< orders fitted past the greedy stop (for the count's posterior)
   std::size_t candidates = 4;        //!< proposals tried at each step
-  //! A fit whose whitened residual exceeds this many times the noise's (RSS / M sigma^2) has
-  //! its atoms re-seated (reseat) before the final refits; an order that fits to the noise
-  //! is not worth the cost.
-  double reseat_misfit = 1.5;
   std::size_t reseat_sweeps = 2;
 };
 
@@ -59,6 +67,8 @@ class LineSearch {
   OrderFit polish(FitState start);
 
  private:
+  //! fitting_chi2 of the record, as RSS [V^2] at the fit's noise level.
+  [[nodiscard]] double fitting_rss() const;
   //! The best addition to `fit`, refined in ln k by golden section on its exact score.
   LineCandidate best_addition(const OrderFit& fit);
   //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.

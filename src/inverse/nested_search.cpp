@@ -7,13 +7,6 @@
 
 namespace stengmc {
 
-namespace {
-// A model fits a record to its noise when its best order's whitened RSS lies within this many
-// standard deviations of chi^2_M's mean (M samples, sd sqrt(2 M)): 1.07 x M sigma^2 at M = 10^4.
-// (The held-out ideal family's true orders under the ideal model: 0.97-1.05.)
-constexpr double FITS_SIGMAS = 5.0;
-}  // namespace
-
 std::vector<InversePrior> nested_priors(const InversePrior& prior) {
   const bool loads = prior.load_cv[1] > 0.0, onsets = prior.onset_s[1] > prior.onset_s[0];
   std::vector<InversePrior> out;
@@ -54,7 +47,7 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
   NestedFits out;
   const double s2 = sigma_v * sigma_v;
   const auto samples = static_cast<double>(voltage.size());
-  const double fits_chi2 = (1.0 + FITS_SIGMAS * std::sqrt(2.0 / samples)) * samples;
+  const double fits_chi2 = fitting_chi2(voltage.size());
   // A nested fit's atoms carry their loads (N x the shared factor, record_fit.cpp); a layout of
   // per-atom loads has no shared factor.
   auto lifted = [&](const FitState& state) {

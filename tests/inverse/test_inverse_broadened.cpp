@@ -126,6 +126,30 @@ TEST(InverseBroadened, ThreeUnequalLoadsFromTheStartAreCountedExactly) {
   }
 }
 
+// The loads family's held-out realisation 2: eleven asperities from t = 0 whose
+// Greenwood-Williamson loads lie 0.21-1.96 x the device's, two pairs of lines within 0.3-0.8 %
+// in k, at 23.6 dB. The truth, refined, fits to the noise (RSS 0.97 M sigma^2), but the loads-
+// alone search stopped at 1.09 M sigma^2 with 13 atoms and the estimate had 15: one atom had a
+// load a few breakaway periods off (its tail in phase, its plateau not), and the search re-
+// seated atoms only of orders above 1.5 M sigma^2, a bound far above "fits to the noise"
+// (1.07 M). Re-seated below it, the eleven are found.
+TEST(InverseBroadened, ElevenUnequalLoadsAreFoundByReseatingOrdersThatDoNotFitTheNoise) {
+  const InverseSetup setup = broadened_vb10_setup();
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  const std::vector<SimulatedAsperity> truth = {
+      {37.8025, 1.95993e-3, 0.0}, {41.4391, 2.10464e-4, 0.0}, {52.7106, 7.22485e-4, 0.0}, {53.1211, 2.19371e-4, 0.0},
+      {55.0688, 8.82966e-4, 0.0}, {55.2149, 6.50663e-4, 0.0}, {57.8553, 8.96691e-4, 0.0}, {76.3395, 1.06679e-3, 0.0},
+      {88.6729, 6.03115e-4, 0.0}, {103.3423, 1.11711e-3, 0.0}, {115.6991, 1.31947e-3, 0.0}};
+  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
+  add_white_noise(record, std::pow(10.0, -23.6 / 20.0) * rms(record), 2);
+  Inverter inverter(setup, *library, nullptr);
+  const Inversion result = inverter.invert("eleven unequal loads", record);
+  EXPECT_EQ(result.raw.count, truth.size());
+  ASSERT_EQ(result.raw.lines.size(), truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+}
+
 // Which simpler models a prior contains (nested_search.hpp): the ideal device's whenever it
 // frees loads or onsets, loads alone and onsets alone when it frees both, none otherwise; the
 // tolerance, noise and offset kept as written.
