@@ -53,6 +53,24 @@ InverseSetup broadened_vb10_setup() {
                                    "broadened_vb10.toml", std::nullopt));
 }
 
+//! The raw inversion of the forward model's record of `truth` with white noise at `snr_db`
+//! (of the record's rms) drawn from stream `seed`.
+Inversion invert_simulated(const InverseSetup& setup, const AtomLibrary& library, const std::vector<SimulatedAsperity>& truth,
+                           double snr_db, std::uint64_t seed) {
+  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
+  add_white_noise(record, std::pow(10.0, -snr_db / 20.0) * rms(record), seed);
+  Inverter inverter(setup, library, nullptr);
+  return inverter.invert("simulated record", record);
+}
+
+//! The count exact and each line's k within 1 % of its asperity's (`truth` ascending in k).
+void expect_count_and_stiffnesses(const Inversion& result, const std::vector<SimulatedAsperity>& truth) {
+  EXPECT_EQ(result.raw.count, truth.size());
+  ASSERT_EQ(result.raw.lines.size(), truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+}
+
 TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
   // The must-show record: 100 us at 100 MHz, a prior of loads spread by a CV of
   // 0.2-0.6 and onsets within 20 us; four asperities whose loads lie 0.6-1.5 x the device's
@@ -64,15 +82,8 @@ TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
   const double n0 = setup.device.asperity.normal_load_n;
   const std::vector<SimulatedAsperity> truth = {
       {30.0, 0.6 * n0, 3.1e-6}, {60.0, 1.5 * n0, 0.0}, {110.0, 0.8 * n0, 12.5e-6}, {200.0, 1.2 * n0, 7.3e-6}};
-  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
   // 40 dB: the prior's highest SNR.
-  add_white_noise(record, 1e-2 * rms(record), 3);
-  Inverter inverter(setup, *library, nullptr);
-  const Inversion result = inverter.invert("unequal loads and onsets", record);
-  EXPECT_EQ(result.raw.count, 4u);
-  ASSERT_EQ(result.raw.lines.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i)
-    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+  expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, 40.0, 3), truth);
 }
 
 // Records of the ideal device under the broadened prior of studies/inverse/device_vb10_real.toml
@@ -114,16 +125,11 @@ TEST(InverseBroadened, ThreeUnequalLoadsFromTheStartAreCountedExactly) {
   const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
   const double n0 = setup.device.asperity.normal_load_n;
   const std::vector<SimulatedAsperity> truth = {{54.0, 0.395 * n0, 0.0}, {57.9, 1.348 * n0, 0.0}, {66.6, 0.479 * n0, 0.0}};
-  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
-  add_white_noise(record, std::pow(10.0, -28.3 / 20.0) * rms(record), 5);
-  Inverter inverter(setup, *library, nullptr);
-  const Inversion result = inverter.invert("unequal loads", record);
-  EXPECT_EQ(result.raw.count, truth.size());
-  ASSERT_EQ(result.raw.lines.size(), truth.size());
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+  const Inversion result = invert_simulated(setup, *library, truth, 28.3, 5);
+  expect_count_and_stiffnesses(result, truth);
+  if (result.raw.lines.size() != truth.size()) return;
+  for (std::size_t i = 0; i < truth.size(); ++i)
     EXPECT_NEAR(result.raw.lines[i].load_n / truth[i].normal_load_n, 1.0, 0.1) << "line " << i;
-  }
 }
 
 // The loads family's held-out realisation 2: eleven asperities from t = 0 whose
@@ -140,14 +146,7 @@ TEST(InverseBroadened, ElevenUnequalLoadsAreFoundByReseatingOrdersThatDoNotFitTh
       {37.8025, 1.95993e-3, 0.0}, {41.4391, 2.10464e-4, 0.0}, {52.7106, 7.22485e-4, 0.0}, {53.1211, 2.19371e-4, 0.0},
       {55.0688, 8.82966e-4, 0.0}, {55.2149, 6.50663e-4, 0.0}, {57.8553, 8.96691e-4, 0.0}, {76.3395, 1.06679e-3, 0.0},
       {88.6729, 6.03115e-4, 0.0}, {103.3423, 1.11711e-3, 0.0}, {115.6991, 1.31947e-3, 0.0}};
-  std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
-  add_white_noise(record, std::pow(10.0, -23.6 / 20.0) * rms(record), 2);
-  Inverter inverter(setup, *library, nullptr);
-  const Inversion result = inverter.invert("eleven unequal loads", record);
-  EXPECT_EQ(result.raw.count, truth.size());
-  ASSERT_EQ(result.raw.lines.size(), truth.size());
-  for (std::size_t i = 0; i < truth.size(); ++i)
-    EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
+  expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, 23.6, 2), truth);
 }
 
 // Which simpler models a prior contains (nested_search.hpp): the ideal device's whenever it
