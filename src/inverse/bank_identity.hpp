@@ -16,8 +16,10 @@ namespace stengmc {
 //! loads alone, onsets alone: nested_search.hpp).
 //! 3: the coloured noise's spectrum fitted with weights from its model (noise_whitening.cpp);
 //! nested models judged against that noise; atoms re-seated in every order that does not fit
-//! to the noise (fitting_chi2, line_search.hpp), not only above 1.5 M sigma^2.
-inline constexpr int ESTIMATOR_VERSION = 3;
+//! to the noise (fitting_chi2, noise_judge.hpp), not only above 1.5 M sigma^2.
+//! 4: under a prior of coloured noise the search's re-seating also judges its fits whitened
+//! (NoiseJudge), as the nested searches already did.
+inline constexpr int ESTIMATOR_VERSION = 4;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

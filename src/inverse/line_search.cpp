@@ -29,12 +29,8 @@ constexpr std::size_t SPLITS_REFITTED = 2;
 constexpr std::size_t REPLACEMENTS = 3;
 }  // namespace
 
-LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options)
-    : fit_(&fit), proposals_(&proposals), options_(options) {}
-
-double LineSearch::fitting_rss() const {
-  return fitting_chi2(fit_->record().size()) * fit_->sigma_v() * fit_->sigma_v();
-}
+LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options, NoiseJudge judge)
+    : fit_(&fit), proposals_(&proposals), options_(options), judge_(std::move(judge)) {}
 
 std::vector<bool> LineSearch::neighbours(const FitState& state) const {
   const AtomModel& model = fit_->model().atoms().model();
@@ -141,9 +137,8 @@ std::vector<OrderFit> LineSearch::search(const FitState& start, std::size_t max_
   // is negligible whatever it becomes. (Where the greedy path left the fitting order with an
   // atom patching a local minimum, RecordEstimator's backward elimination removes it.) On
   // records the atoms fit this spares the re-seating, a third of the estimation's time.
-  const double noise_rss = fitting_rss();
   const bool one_fits = std::any_of(fits.begin() + static_cast<std::ptrdiff_t>(std::min(first, fits.size())), fits.end(),
-                                    [&](const OrderFit& f) { return f.residual_v2 < noise_rss; });
+                                    [&](const OrderFit& f) { return fits_noise(f); });
   if (!one_fits)
     for (std::size_t n = first; n < fits.size(); ++n) reseat(fits[n], options_.reseat_sweeps);
   refit(fits, first);
@@ -174,7 +169,7 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
   for (std::size_t sweep = 0; sweep < sweeps; ++sweep) {
     bool improved = false;
     for (std::size_t i = 0; i < fit.state.atoms.size(); ++i) {
-      if (fit.residual_v2 < fitting_rss()) return;
+      if (fits_noise(fit)) return;
       FitState without = fit.state;
       const AtomParameters own = without.atoms[i];
       without.atoms.erase(without.atoms.begin() + static_cast<std::ptrdiff_t>(i));
@@ -189,7 +184,7 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
     const double before = fit.residual_v2;
     replace(fit);
     if (fit.residual_v2 < before) improved = true;
-    if (fit.residual_v2 >= fitting_rss() && exchange(fit)) improved = true;
+    if (!fits_noise(fit) && exchange(fit)) improved = true;
     if (!improved) return;
   }
 }
@@ -200,7 +195,6 @@ bool LineSearch::exchange(OrderFit& fit) {
   const RecordModel& record_model = fit_->model();
   const std::size_t samples = fit_->record().size();
   const std::size_t n = fit.state.atoms.size();
-  const double fits_rss = fitting_rss();
   auto dot = [](std::span<const double> x, std::span<const double> y) {
     double s = 0.0;
     for (std::size_t k = 0; k < x.size(); ++k) s += x[k] * y[k];
@@ -215,7 +209,7 @@ bool LineSearch::exchange(OrderFit& fit) {
     return g;
   };
   bool kept = false;
-  for (std::size_t round = 0; round < n && fit.residual_v2 >= fits_rss; ++round) {
+  for (std::size_t round = 0; round < n && !fits_noise(fit); ++round) {
     FitState state = fit.state;
     const std::vector<double> r = fit_->residual(state);
     const double a = state.amplitude, d = state.damping_rate_per_s;
@@ -294,8 +288,7 @@ bool LineSearch::exchange(OrderFit& fit) {
 void LineSearch::replace(OrderFit& fit) {
   const FitLayout& layout = fit_->layout();
   if (!layout.onset_free && !layout.load_per_atom) return;
-  const double fits_rss = fitting_rss();
-  for (std::size_t i = 0; i < fit.state.atoms.size() && fit.residual_v2 >= fits_rss; ++i) {
+  for (std::size_t i = 0; i < fit.state.atoms.size() && !fits_noise(fit); ++i) {
     FitState without = fit.state;
     const AtomParameters own = without.atoms[i];
     without.atoms.erase(without.atoms.begin() + static_cast<std::ptrdiff_t>(i));
@@ -310,14 +303,13 @@ std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
   const RecordModel& record_model = fit_->model();
   const AtomModel& model = record_model.atoms().model();
   const std::size_t samples = fit_->record().size();
-  const double fits_rss = fitting_rss();
   const double lo = std::log(record_model.atoms().min_stiffness()), hi = std::log(record_model.atoms().max_stiffness());
   std::optional<OrderFit> best;
   // On the ideal device (k alone free) two close lines are told apart by the greedy path: the
   // amplitude an atom must have leaves the second one in the residual.
   if (!fit_->layout().onset_free && !fit_->layout().load_per_atom) return best;
   {
-    if (fit.state.atoms.empty() || fit.residual_v2 < fits_rss) return best;
+    if (fit.state.atoms.empty() || fits_noise(fit)) return best;
     FitState state = fit.state;
     const std::vector<double> r = fit_->residual(state);
     const double a = state.amplitude, d = state.damping_rate_per_s;

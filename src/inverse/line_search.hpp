@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "inverse/line_proposals.hpp"
+#include "inverse/noise_judge.hpp"
 #include "inverse/record_fit.hpp"
 
 namespace stengmc {
@@ -24,17 +25,6 @@ namespace stengmc {
 //! posterior weight below e^{-500} of the best's: LineSearch::refit refits it with a few steps
 //! only, and the nested searches do not offer it as a start (nested_search.cpp).
 inline constexpr double HOPELESS_CHI2_GAP = 1000.0;
-
-//! A fit fits a record of M samples to its noise when its whitened RSS / sigma^2 lies within
-//! this many standard deviations (sqrt(2 M)) of chi^2_M's mean M.
-inline constexpr double FITS_SIGMAS = 5.0;
-//! That bound on RSS / sigma^2: (1 + 5 sqrt(2 / M)) M, 1.07 M at M = 10^4 (the held-out ideal
-//! family's true orders under the ideal model: 0.97-1.05 M). The search re-seats the atoms of
-//! orders above it, and the nested searches stop at the first model whose best order is below.
-inline double fitting_chi2(std::size_t samples) {
-  const auto m = static_cast<double>(samples);
-  return (1.0 + FITS_SIGMAS * std::sqrt(2.0 / m)) * m;
-}
 
 struct LineSearchOptions {
   std::size_t max_iterations = 60;   //!< per Levenberg–Marquardt refinement
@@ -49,7 +39,8 @@ struct LineSearchOptions {
 
 class LineSearch {
  public:
-  LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options = {});
+  //! `judge` says which fits explain the record to its noise (those are not re-seated).
+  LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options = {}, NoiseJudge judge = {});
 
   //! Fits for n = 0 (no atom) along the greedy path to its stop, then `extra_orders` more,
   //! and on to `min_count` at least, never beyond `max_count`: index n holds the fit with n
@@ -67,8 +58,8 @@ class LineSearch {
   OrderFit polish(FitState start);
 
  private:
-  //! fitting_chi2 of the record, as RSS [V^2] at the fit's noise level.
-  [[nodiscard]] double fitting_rss() const;
+  //! Whether `fit` explains the record to its noise (noise_judge.hpp).
+  [[nodiscard]] bool fits_noise(const OrderFit& fit) const { return judge_.fits(*fit_, fit); }
   //! The best addition to `fit`, refined in ln k by golden section on its exact score.
   LineCandidate best_addition(const OrderFit& fit);
   //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.
@@ -108,6 +99,7 @@ class LineSearch {
   RecordFit* fit_;
   LineProposals* proposals_;
   LineSearchOptions options_;
+  NoiseJudge judge_;
 };
 
 }  // namespace stengmc

@@ -55,10 +55,13 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     if (!layout.load_shared) s.load_factor = 1.0;
     return s;
   };
+  // Judged against the noise the estimator will assume: white, or (coloured) the spectrum of
+  // each order's residual (noise_judge.hpp), by the searches' re-seating and by this stop alike.
+  const NoiseJudge judge = layout.coloured_noise && whitened_level ? NoiseJudge(whitened_level) : NoiseJudge();
   for (const std::unique_ptr<Level>& level : levels_) {
     RecordFit fit(*model_, level->layout, level->loads, voltage);
     fit.set_noise(Whitener(), sigma_v);
-    LineSearch search(fit, level->proposals, options_);
+    LineSearch search(fit, level->proposals, options_, judge);
     FitState start;
     start.damping_rate_per_s = level->layout.nominal_damping_rate;
     const std::vector<OrderFit> fits = search.search(start, max_count, min_count);
@@ -72,18 +75,7 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     for (const OrderFit& f : fits)
       if (!f.state.atoms.empty() && f.normal_matrix.size() > 0 && f.residual_v2 / s2 + f.penalty <= best + HOPELESS_CHI2_GAP)
         out.starts.push_back(lifted(f.state));
-    // Judged against the noise the estimator will assume: white, or (coloured) the spectrum of
-    // this order's residual, whose 1/f part a white level, taken above the lines, leaves out:
-    // judged white, no nested model fitted a record of coloured noise and the broadened search
-    // ran on every one.
-    double chi2 = fits[best_order].residual_v2 / s2;
-    if (layout.coloured_noise && whitened_level) {
-      FitState state = fits[best_order].state;
-      const Whitener whitener = whitener_of(fit_noise_spectrum(fit.residual(state)), voltage.size());
-      const double noise_v = whitened_level(whitener);
-      fit.set_noise(whitener, noise_v);
-      chi2 = fit.whitened_rss(state) / (noise_v * noise_v);
-    }
+    const double chi2 = judge.chi2(fit, fits[best_order]);
     if (std::getenv("STENGMC_DEBUG_SEARCH"))
       std::fprintf(stderr, "nested level: best order %zu, chi2 / M %.4f (fits below %.4f)\n", best_order, chi2 / samples,
                    fits_chi2 / samples);

@@ -16,7 +16,6 @@
 //! fit of that order; the broadened fit of an order is replaced where a start reaches a better
 //! optimum. The model and its posterior stay the broadened prior's: the nested searches choose
 //! where to look, not what is believed.
-#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -25,6 +24,7 @@
 #include "inverse/inverse_prior.hpp"
 #include "inverse/line_proposals.hpp"
 #include "inverse/line_search.hpp"
+#include "inverse/noise_judge.hpp"
 #include "inverse/load_prior.hpp"
 #include "inverse/record_fit.hpp"
 #include "inverse/record_model.hpp"
@@ -60,12 +60,9 @@ class NestedSearch {
   //! True when the prior has nested priors.
   [[nodiscard]] bool applies() const { return !levels_.empty(); }
 
-  //! The level [V] of the noise a whitener leaves, the model's own floor included (the
-  //! estimator's rule; used only when the broadened layout has coloured noise).
-  using WhitenedLevel = std::function<double(const Whitener&)>;
-
   //! The nested models' fits of `voltage` (searched as white noise of level `sigma_v`),
   //! simplest first, as states of the broadened `layout` (a nested fit is a point of it).
+  //! `whitened_level` (noise_judge.hpp) is used only when `layout` has coloured noise.
   [[nodiscard]] NestedFits search(std::span<const double> voltage, double sigma_v, const FitLayout& layout,
                                   std::size_t max_count, std::size_t min_count, const WhitenedLevel& whitened_level = {});
 

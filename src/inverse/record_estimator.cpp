@@ -99,15 +99,6 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
   const double white2 = out.noise.bins > 0 ? out.noise.sigma_v * out.noise.sigma_v : power;
   double sigma = with_floor(white2, power);
 
-  RecordFit fit(model_, layout_, loads_, voltage);
-  fit.set_noise(Whitener(), sigma);
-  LineSearch search(fit, proposals_, options_);
-  FitState start;
-  start.damping_rate_per_s = layout_.nominal_damping_rate;
-  // The nested models first (inverse/nested_search.hpp). Where one fits the record to its
-  // noise its orders are the fits, evaluated in the broadened model; else the broadened search.
-  // Either way each nested order refitted in full is a start, polished in the broadened model,
-  // that replaces its order's fit where it reaches a better optimum.
   // The noise level a whitener leaves: its innovation, with the model's floor on the whitened
   // record's power above it.
   auto whitened_level = [&](const Whitener& whitener) {
@@ -117,6 +108,16 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     const double innovation2 = whitener.innovation_sigma_v() * whitener.innovation_sigma_v();
     return with_floor(innovation2, std::max(0.0, mean_square(whitened) - innovation2));
   };
+  RecordFit fit(model_, layout_, loads_, voltage);
+  fit.set_noise(Whitener(), sigma);
+  // Under a prior of coloured noise the search judges its fits whitened (noise_judge.hpp).
+  LineSearch search(fit, proposals_, options_, layout_.coloured_noise ? NoiseJudge(whitened_level) : NoiseJudge());
+  FitState start;
+  start.damping_rate_per_s = layout_.nominal_damping_rate;
+  // The nested models first (inverse/nested_search.hpp). Where one fits the record to its
+  // noise its orders are the fits, evaluated in the broadened model; else the broadened search.
+  // Either way each nested order refitted in full is a start, polished in the broadened model,
+  // that replaces its order's fit where it reaches a better optimum.
   NestedFits nested;
   if (nested_.applies())
     nested = nested_.search(voltage, sigma, layout_, prior_.count_max + 1, prior_.count_min, whitened_level);

@@ -16,6 +16,8 @@
 #include "inverse/fit_layout.hpp"
 #include "inverse/load_prior.hpp"
 #include "inverse/nested_search.hpp"
+#include "inverse/noise_judge.hpp"
+#include "inverse/record_fit.hpp"
 #include "inverse/record_model.hpp"
 #include "inverse/simulated_record.hpp"
 #include "pipeline/measurement_noise.hpp"
@@ -210,6 +212,45 @@ TEST(NestedSearch, AnIdealRecordInColouredNoiseFitsTheIdealModelOnceWhitened) {
   for (std::size_t i = 0; i < k.size(); ++i) EXPECT_NEAR(atoms[i].stiffness_n_per_m / k[i], 1.0, 1e-2) << "line " << i;
   EXPECT_TRUE(nested.search(noisy.voltage_v, white_sigma_v, layout, 9, 0).fitted_orders.empty())
       << "judged against the white part alone, a model fitted the coloured record";
+}
+
+// The judge behind both (noise_judge.hpp), on the same kind of record fitted from the truth:
+// whitened by its residual's spectrum, the truth's fit of five lines in 70 % 1/f noise fits to
+// the noise, and against the white part alone it does not; the fit that lacks one of the
+// lines must not fit whitened either (a whitener fitted to a residual holding a line could
+// swallow it: the spectrum's band medians must leave it out).
+TEST(NoiseJudge, JudgesAColouredRecordWhitenedWithoutHidingAMissingLine) {
+  const InverseSetup setup = broadened_vb10_setup();
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  const std::vector<double> k = {78.19, 79.2, 90.42, 97.23, 127.29};
+  const std::vector<double> clean = simulate_record(setup.device, k, setup.grid);
+  const NoiseSettings settings{.snr_db = 26.0, .coloured_share = 0.7, .coloured_exponent = 1.0, .offset_v = 0.01};
+  RandomEngine white = random_stream(7, 0, StreamKind::noise, 0), coloured = random_stream(7, 0, StreamKind::noise, 1);
+  const NoisyVoltage noisy = measure_voltage(clean, 0, clean.size(), setup.grid.sample_rate_hz(), settings, white, coloured);
+  const double white_sigma_v = std::sqrt(1.0 - settings.coloured_share) * noisy.sigma_v;
+
+  const RecordModel model(*library);
+  const LoadPrior loads(setup.prior);
+  const FitLayout layout = fit_layout(setup.prior, setup.device, loads);
+  RecordFit fit(model, layout, loads, noisy.voltage_v);
+  fit.set_noise(Whitener(), white_sigma_v);
+  FitState truth;
+  truth.damping_rate_per_s = layout.nominal_damping_rate;
+  for (double ki : k) truth.atoms.push_back({ki, setup.device.asperity.normal_load_n, 0.0});
+  FitState missing = truth;
+  missing.atoms.erase(missing.atoms.begin() + 2);
+  const OrderFit full = fit.refine(truth, {}, true, false), lacking = fit.refine(missing, {}, true, false);
+
+  const NoiseJudge whitened([](const Whitener& w) { return w.innovation_sigma_v(); }), white_only;
+  const auto m = static_cast<double>(noisy.voltage_v.size());
+  std::printf("chi2 / M: the truth's fit whitened %.3f, white %.3f; without the 90 N/m line whitened %.3f (fits below %.3f)\n",
+              whitened.chi2(fit, full) / m, white_only.chi2(fit, full) / m, whitened.chi2(fit, lacking) / m,
+              fitting_chi2(noisy.voltage_v.size()) / m);
+  EXPECT_TRUE(whitened.fits(fit, full));
+  EXPECT_FALSE(white_only.fits(fit, full));
+  EXPECT_FALSE(whitened.fits(fit, lacking));
+  EXPECT_TRUE(fit.whitener().identity()) << "the judge left its whitener on the fit";
+  EXPECT_EQ(fit.sigma_v(), white_sigma_v);
 }
 
 TEST(InverseBroadened, PureNoiseHasNoSlidingAsperity) {
