@@ -18,7 +18,7 @@ namespace stengmc {
 //! nested models judged against that noise; atoms re-seated in every order that does not fit
 //! to the noise (fitting_chi2, noise_judge.hpp), not only above 1.5 M sigma^2.
 //! 4: under a prior of coloured noise the search's re-seating also judges its fits whitened
-//! (NoiseJudge), as the nested searches already did.
+//! (NoiseJudge), as the nested searches already did; narrow splits (LineSearch::split).
 inline constexpr int ESTIMATOR_VERSION = 4;
 
 struct BankIdentity {
