@@ -93,7 +93,10 @@ class LineSearch {
   //! greedy path's next atom spent elsewhere (no single atom added beside the merged one
   //! explains the pair): the best fit with one of `fit`'s atoms split in two (half a line
   //! width either side, each keeping the load and onset), the most promising splits by their
-  //! scores refitted with their neighbours; none when `fit` fits to the noise or has no atom.
+  //! scores refitted with their neighbours; and, for pairs a fraction of a line width apart,
+  //! whose split scores badly whatever it is, the atoms with the most residual power around
+  //! their line split an eighth of a width either side and refitted. None when `fit` fits to
+  //! the noise or has no atom.
   std::optional<OrderFit> split(const OrderFit& fit);
 
   RecordFit* fit_;
