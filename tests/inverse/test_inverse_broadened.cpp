@@ -201,6 +201,29 @@ TEST(NestedPriors, AreTheSimplerModelsThePriorContains) {
   EXPECT_EQ(nested_priors(loads_only)[0].load_cv, (std::array<double, 2>{0.0, 0.0}));
 }
 
+//! An ideal record (the five asperities of the held-out ideal family's record 26, the device's
+//! load, all from t = 0) in 70 % 1/f noise at 26 dB with a 10 mV offset (noise stream 7), and
+//! what fitting it under broadened_vb10_setup's prior needs.
+struct ColouredIdealRecord {
+  InverseSetup setup = broadened_vb10_setup();
+  std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  std::vector<double> k = {78.19, 79.2, 90.42, 97.23, 127.29};
+  std::vector<double> voltage_v;
+  double white_sigma_v = 0.0;  //!< the level of the noise's white part [V]
+  RecordModel model{*library};
+  LoadPrior loads{setup.prior};
+  FitLayout layout = fit_layout(setup.prior, setup.device, loads);
+
+  ColouredIdealRecord() {
+    const std::vector<double> clean = simulate_record(setup.device, k, setup.grid);
+    const NoiseSettings settings{.snr_db = 26.0, .coloured_share = 0.7, .coloured_exponent = 1.0, .offset_v = 0.01};
+    RandomEngine white = random_stream(7, 0, StreamKind::noise, 0), coloured = random_stream(7, 0, StreamKind::noise, 1);
+    NoisyVoltage noisy = measure_voltage(clean, 0, clean.size(), setup.grid.sample_rate_hz(), settings, white, coloured);
+    voltage_v = std::move(noisy.voltage_v);
+    white_sigma_v = std::sqrt(1.0 - settings.coloured_share) * noisy.sigma_v;
+  }
+};
+
 // Whether a nested model fits a record to its noise is judged against the noise the estimator
 // will assume. An ideal record (five asperities of the held-out ideal family's record 26) under
 // 70 % 1/f noise and an offset is a point of the ideal model: whitened by the spectrum fitted to
@@ -209,26 +232,17 @@ TEST(NestedPriors, AreTheSimplerModelsThePriorContains) {
 // is ~3 x the noise and no level would fit: every such record then paid for all three nested
 // searches and the broadened one (a held-out coloured-noise record took 300 s, now 38 s).
 TEST(NestedSearch, AnIdealRecordInColouredNoiseFitsTheIdealModelOnceWhitened) {
-  const InverseSetup setup = broadened_vb10_setup();
-  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const std::vector<double> k = {78.19, 79.2, 90.42, 97.23, 127.29};
-  const std::vector<double> clean = simulate_record(setup.device, k, setup.grid);
-  const NoiseSettings settings{.snr_db = 26.0, .coloured_share = 0.7, .coloured_exponent = 1.0, .offset_v = 0.01};
-  RandomEngine white = random_stream(7, 0, StreamKind::noise, 0), coloured = random_stream(7, 0, StreamKind::noise, 1);
-  const NoisyVoltage noisy = measure_voltage(clean, 0, clean.size(), setup.grid.sample_rate_hz(), settings, white, coloured);
-  const double white_sigma_v = std::sqrt(1.0 - settings.coloured_share) * noisy.sigma_v;
-
-  const RecordModel model(*library);
-  const LoadPrior loads(setup.prior);
-  const FitLayout layout = fit_layout(setup.prior, setup.device, loads);
-  ASSERT_TRUE(layout.coloured_noise);
-  NestedSearch nested(model, setup.prior, setup.device, LineSearchOptions{});
+  const ColouredIdealRecord r;
+  const InverseSetup& setup = r.setup;
+  const std::vector<double>& k = r.k;
+  ASSERT_TRUE(r.layout.coloured_noise);
+  NestedSearch nested(r.model, setup.prior, setup.device, LineSearchOptions{});
   const auto innovation = [](const Whitener& w) { return w.innovation_sigma_v(); };
-  const NestedFits whitened = nested.search(noisy.voltage_v, white_sigma_v, layout, 9, 0, innovation);
+  const NestedFits whitened = nested.search(r.voltage_v, r.white_sigma_v, r.layout, 9, 0, innovation);
   ASSERT_GT(whitened.fitted_orders.size(), k.size()) << "no nested model fitted the whitened record";
   const std::vector<AtomParameters>& atoms = whitened.fitted_orders[k.size()].atoms;
   for (std::size_t i = 0; i < k.size(); ++i) EXPECT_NEAR(atoms[i].stiffness_n_per_m / k[i], 1.0, 1e-2) << "line " << i;
-  EXPECT_TRUE(nested.search(noisy.voltage_v, white_sigma_v, layout, 9, 0).fitted_orders.empty())
+  EXPECT_TRUE(nested.search(r.voltage_v, r.white_sigma_v, r.layout, 9, 0).fitted_orders.empty())
       << "judged against the white part alone, a model fitted the coloured record";
 }
 
@@ -238,37 +252,28 @@ TEST(NestedSearch, AnIdealRecordInColouredNoiseFitsTheIdealModelOnceWhitened) {
 // lines must not fit whitened either (a whitener fitted to a residual holding a line could
 // swallow it: the spectrum's band medians must leave it out).
 TEST(NoiseJudge, JudgesAColouredRecordWhitenedWithoutHidingAMissingLine) {
-  const InverseSetup setup = broadened_vb10_setup();
-  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const std::vector<double> k = {78.19, 79.2, 90.42, 97.23, 127.29};
-  const std::vector<double> clean = simulate_record(setup.device, k, setup.grid);
-  const NoiseSettings settings{.snr_db = 26.0, .coloured_share = 0.7, .coloured_exponent = 1.0, .offset_v = 0.01};
-  RandomEngine white = random_stream(7, 0, StreamKind::noise, 0), coloured = random_stream(7, 0, StreamKind::noise, 1);
-  const NoisyVoltage noisy = measure_voltage(clean, 0, clean.size(), setup.grid.sample_rate_hz(), settings, white, coloured);
-  const double white_sigma_v = std::sqrt(1.0 - settings.coloured_share) * noisy.sigma_v;
-
-  const RecordModel model(*library);
-  const LoadPrior loads(setup.prior);
-  const FitLayout layout = fit_layout(setup.prior, setup.device, loads);
-  RecordFit fit(model, layout, loads, noisy.voltage_v);
-  fit.set_noise(Whitener(), white_sigma_v);
+  const ColouredIdealRecord r;
+  const InverseSetup& setup = r.setup;
+  const std::vector<double>& k = r.k;
+  RecordFit fit(r.model, r.layout, r.loads, r.voltage_v);
+  fit.set_noise(Whitener(), r.white_sigma_v);
   FitState truth;
-  truth.damping_rate_per_s = layout.nominal_damping_rate;
+  truth.damping_rate_per_s = r.layout.nominal_damping_rate;
   for (double ki : k) truth.atoms.push_back({ki, setup.device.asperity.normal_load_n, 0.0});
   FitState missing = truth;
   missing.atoms.erase(missing.atoms.begin() + 2);
   const OrderFit full = fit.refine(truth, {}, true, false), lacking = fit.refine(missing, {}, true, false);
 
   const NoiseJudge whitened([](const Whitener& w) { return w.innovation_sigma_v(); }), white_only;
-  const auto m = static_cast<double>(noisy.voltage_v.size());
+  const auto m = static_cast<double>(r.voltage_v.size());
   std::printf("chi2 / M: the truth's fit whitened %.3f, white %.3f; without the 90 N/m line whitened %.3f (fits below %.3f)\n",
               whitened.chi2(fit, full) / m, white_only.chi2(fit, full) / m, whitened.chi2(fit, lacking) / m,
-              fitting_chi2(noisy.voltage_v.size()) / m);
+              fitting_chi2(r.voltage_v.size()) / m);
   EXPECT_TRUE(whitened.fits(fit, full));
   EXPECT_FALSE(white_only.fits(fit, full));
   EXPECT_FALSE(whitened.fits(fit, lacking));
   EXPECT_TRUE(fit.whitener().identity()) << "the judge left its whitener on the fit";
-  EXPECT_EQ(fit.sigma_v(), white_sigma_v);
+  EXPECT_EQ(fit.sigma_v(), r.white_sigma_v);
 }
 
 TEST(InverseBroadened, PureNoiseHasNoSlidingAsperity) {
