@@ -19,7 +19,9 @@ namespace stengmc {
 //! to the noise (fitting_chi2, noise_judge.hpp), not only above 1.5 M sigma^2.
 //! 4: under a prior of coloured noise the search's re-seating also judges its fits whitened
 //! (NoiseJudge), as the nested searches already did; narrow splits (LineSearch::split).
-inline constexpr int ESTIMATOR_VERSION = 4;
+//! 5: a fit fits to its noise only if no band of its residual's spectrum stands out
+//! (residual_bands.hpp), not only its chi^2.
+inline constexpr int ESTIMATOR_VERSION = 5;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

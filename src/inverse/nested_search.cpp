@@ -75,11 +75,12 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     for (const OrderFit& f : fits)
       if (!f.state.atoms.empty() && f.normal_matrix.size() > 0 && f.residual_v2 / s2 + f.penalty <= best + HOPELESS_CHI2_GAP)
         out.starts.push_back(lifted(f.state));
-    const double chi2 = judge.chi2(fit, fits[best_order]);
+    const NoiseJudge::Judgement judged = judge.judge(fit, fits[best_order]);
     if (std::getenv("STENGMC_DEBUG_SEARCH"))
-      std::fprintf(stderr, "nested level: best order %zu, chi2 / M %.4f (fits below %.4f)\n", best_order, chi2 / samples,
-                   fits_chi2 / samples);
-    if (chi2 <= fits_chi2) {
+      std::fprintf(stderr, "nested level: best order %zu, chi2 / M %.4f (fits below %.4f), worst segment %zu-%zu p %.3g of %zu\n",
+                   best_order, judged.chi2 / samples, fits_chi2 / samples, judged.worst.first_sample,
+                   judged.worst.last_sample, judged.worst.p_value, judged.worst.segments);
+    if (judged.fits) {
       for (const OrderFit& f : fits) out.fitted_orders.push_back(lifted(f.state));
       break;
     }

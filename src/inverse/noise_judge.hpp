@@ -11,12 +11,18 @@
 //! family took 9 s a record instead of 1.6 s). There the residual's noise spectrum is fitted,
 //! and the RSS whitened by it is judged against the level that whitener leaves, as the
 //! estimator judges its final fits.
+//!
+//! A chi^2 within its bound is not enough: the residual must also be noise throughout the
+//! record (residual_segments.hpp), no tenth of it above the noise by more than FITS_SIGMAS
+//! after Bonferroni's correction. A misfit confined to the breakaway (a wrong load or onset)
+//! passes a global chi^2 that the rest of the record dilutes; it does not pass this.
 #include <cmath>
 #include <cstddef>
 #include <functional>
 
 #include "inverse/noise_whitening.hpp"
 #include "inverse/record_fit.hpp"
+#include "inverse/residual_segments.hpp"
 
 namespace stengmc {
 
@@ -39,19 +45,24 @@ class NoiseJudge {
   //! Coloured noise: judged whitened by the spectrum of each fit's residual, at `level`'s.
   explicit NoiseJudge(WhitenedLevel level) : level_(std::move(level)) {}
 
-  //! chi^2 of `order` (a fit made by `fit`) under the judged noise. `fit`'s noise model is
-  //! left as it was.
-  [[nodiscard]] double chi2(RecordFit& fit, const OrderFit& order) const;
-  [[nodiscard]] bool fits(RecordFit& fit, const OrderFit& order) const {
-    return chi2(fit, order) <= fitting_chi2(fit.record().size());
-  }
+  struct Judgement {
+    double chi2 = NAN;  //!< under the judged noise
+    WorstSegment worst;  //!< its segment furthest out, tested only where chi2 is within its bound
+                         //!< (else segments = 0)
+    bool fits = false;  //!< chi2 within its bound and no segment out
+  };
+  //! `order` (a fit made by `fit`) under the judged noise. `fit`'s noise model is left as it was.
+  [[nodiscard]] Judgement judge(RecordFit& fit, const OrderFit& order) const;
+  [[nodiscard]] double chi2(RecordFit& fit, const OrderFit& order) const { return judge(fit, order).chi2; }
+  [[nodiscard]] bool fits(RecordFit& fit, const OrderFit& order) const { return judge(fit, order).fits; }
   [[nodiscard]] bool coloured() const { return static_cast<bool>(level_); }
 
  private:
   WhitenedLevel level_;
   // The last judgement (the re-seating asks again of a fit it did not change).
-  mutable double judged_rss_v2_ = NAN, judged_sigma_v_ = NAN, judged_chi2_ = NAN;
+  mutable double judged_rss_v2_ = NAN, judged_sigma_v_ = NAN;
   mutable std::size_t judged_atoms_ = 0;
+  mutable Judgement judged_;
 };
 
 }  // namespace stengmc

@@ -7,6 +7,7 @@
 #include <array>
 #include <boost/random/normal_distribution.hpp>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <vector>
 
@@ -276,6 +277,47 @@ TEST(NoiseJudge, JudgesAColouredRecordWhitenedWithoutHidingAMissingLine) {
   EXPECT_EQ(fit.sigma_v(), r.white_sigma_v);
 }
 
+// The judge asks more than a chi^2 within its bound: that the residual be noise throughout the
+// record (residual_segments.hpp). The same five lines under white noise at 26 dB, fitted from
+// the truth, fit. With a transient added in the first microseconds, where a wrong load or onset
+// leaves its misfit (a 4 MHz ringing, away from the lines so that no refit of them absorbs it,
+// decaying in 1 us, energy 0.03 M sigma^2: chi^2 / M ~1.03, inside the bound of 1.07), the
+// truth's fit no longer explains the record, and the judge must say so though the global
+// chi^2 alone would not.
+TEST(NoiseJudge, AMisfitAtTheBreakawayDoesNotFitThoughItsChiSquareDoes) {
+  const ColouredIdealRecord r;  // for its device, prior and lines; the noise is drawn here
+  const std::vector<double> clean = simulate_record(r.setup.device, r.k, r.setup.grid);
+  const double sigma = 0.05 * rms(clean);  // 26 dB
+  std::vector<double> record = clean;
+  add_white_noise(record, sigma, 3);
+  const auto m = static_cast<double>(record.size());
+  // A transient at the breakaway: a 4 MHz ringing decaying with tau = 1 us, 0.03 M sigma^2.
+  std::vector<double> burst(record.size());
+  double energy = 0.0;
+  for (std::size_t t = 0; t < record.size(); ++t) {
+    const double time_s = static_cast<double>(t) / r.setup.grid.sample_rate_hz();
+    burst[t] = std::exp(-time_s / 1e-6) * std::sin(2.0 * std::numbers::pi * 4e6 * time_s);
+    energy += burst[t] * burst[t];
+  }
+  std::vector<double> transient = record;
+  for (std::size_t t = 0; t < record.size(); ++t) transient[t] += std::sqrt(0.03 * m * sigma * sigma / energy) * burst[t];
+  FitState truth;
+  truth.damping_rate_per_s = r.layout.nominal_damping_rate;
+  for (double ki : r.k) truth.atoms.push_back({ki, r.setup.device.asperity.normal_load_n, 0.0});
+  const NoiseJudge white;
+  for (const bool misfit : {false, true}) {
+    RecordFit fit(r.model, r.layout, r.loads, misfit ? transient : record);
+    fit.set_noise(Whitener(), sigma);
+    const OrderFit f = fit.refine(truth, {}, true, false);
+    const NoiseJudge::Judgement j = white.judge(fit, f);
+    std::printf("%s: chi2 / M %.4f (bound %.4f), worst segment %zu-%zu p %.3g (bound %.3g)\n", misfit ? "with a transient" : "without",
+                j.chi2 / m, fitting_chi2(record.size()) / m, j.worst.first_sample, j.worst.last_sample, j.worst.p_value,
+                bonferroni_p_bound(FITS_SIGMAS, j.worst.segments));
+    EXPECT_LE(j.chi2, fitting_chi2(record.size())) << "the misfit is not diluted: the test tests nothing";
+    EXPECT_EQ(j.fits, !misfit);
+  }
+}
+
 TEST(InverseBroadened, PureNoiseHasNoSlidingAsperity) {
   // Noise alone, white and with the broadened prior's coloured noise and offset in mind: no
   // atom explains it better than the noise does, so n = 0. The noise is that of a record at
@@ -298,14 +340,16 @@ TEST(InverseBroadened, PureNoiseHasNoSlidingAsperity) {
 }
 
 TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
-  // A small calibration of the broadened prior (200 records, seed 21) and 200 held-out
+  // A small calibration of the broadened prior (200 records, seed 21) and 300 held-out
   // records of the same prior with another seed (22): the held-out records' 90 % intervals,
   // calibrated by the first bank's maps, must cover their truths in 0.83-0.97 of the records
-  // (one sd of a true 0.90 over 200 records is 0.021). Cheap records (30 us, 0-5
-  // asperities) keep it to a few minutes on two cores.
-  const std::string inverse =
+  // (one sd of a true 0.90 over 300 records is 0.017). Cheap records (30 us, 0-5
+  // asperities) keep it to a few minutes on two cores. 300, not 200: the warnings need ten
+  // wrong counts to be judged on, and estimator version 5 got 9 of the first 200 wrong.
+  const std::string prior =
       "count = [0, 5]\nmedian_n_per_m = [50, 100]\nsigma_log = [0.2, 0.5]\nload_cv = [0.2, 0.6]\nonset_s = [0, 5e-6]\n"
-      "parameter_tolerance = 0.05\nnoise = \"coloured\"\noffset = true\ncalibration_records = 200\n";
+      "parameter_tolerance = 0.05\nnoise = \"coloured\"\noffset = true\n";
+  const std::string inverse = prior + "calibration_records = 200\n";
   ScratchDir scratch("inverse-broadened-coverage");
   CalibrationOptions options;
   options.show_progress = false;
@@ -313,10 +357,12 @@ TEST(InverseBroadened, NinetyPercentIntervalsCoverHeldOutRecords) {
   const Study study = parse_study(known_device_study("30e-6", inverse), "broadened.toml", std::nullopt);
   const CalibrationBank bank = run_calibration(study, scratch.file("bank.journal"), options);
   options.seed = 22;
-  const CalibrationBank held_out = run_calibration(study, scratch.file("held_out.journal"), options);
+  const Study held_out_study =
+      parse_study(known_device_study("30e-6", prior + "calibration_records = 300\n"), "broadened_held_out.toml", std::nullopt);
+  const CalibrationBank held_out = run_calibration(held_out_study, scratch.file("held_out.journal"), options);
 
   const testing::HeldOutCoverage coverage = testing::held_out_coverage(bank, held_out);
-  ASSERT_GE(coverage.records, 190u);
+  ASSERT_GE(coverage.records, 285u);
   const double count_coverage = coverage.count(), median_coverage = coverage.median(), sd_coverage = coverage.sd();
   std::printf("broadened prior, held-out coverage of the 90 %% intervals: n %.3f (%zu records), median %.3f (%zu), "
               "sd(ln k) %.3f (%zu)\n",
