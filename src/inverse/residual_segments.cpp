@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
 #include "core/error.hpp"
+#include "core/standard_normal.hpp"
 
 namespace stengmc {
 
@@ -28,8 +28,8 @@ WorstSegment worst_residual_segment(std::span<const double> residual, double lev
 }
 
 double bonferroni_p_bound(double sigmas, std::size_t tests) {
-  // One-sided normal tail: Phi(-z) = erfc(z / sqrt 2) / 2.
-  return 0.5 * boost::math::erfc(sigmas / std::sqrt(2.0)) / static_cast<double>(std::max<std::size_t>(tests, 1));
+  // One-sided normal tail Phi(-z), shared among the tests.
+  return phi_cdf(-sigmas) / static_cast<double>(std::max<std::size_t>(tests, 1));
 }
 
 }  // namespace stengmc

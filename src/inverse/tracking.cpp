@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
+#include "core/standard_normal.hpp"
 #include "inverse/driven_steps.hpp"
 #include "inverse/naive_count.hpp"
 #include "inverse/noise_level.hpp"
@@ -32,8 +33,6 @@ namespace {
 constexpr double NOT_HERE = std::numeric_limits<double>::quiet_NaN();
 //! Median of a chi-square variable of one degree of freedom.
 constexpr double CHI2_1_MEDIAN = 0.45493642311957;
-
-double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 
 //! The scatter of a track's frequencies between windows that do not overlap, over what their
 //! Cramer-Rao errors predict: an excited line is a random narrow-band process, not the
@@ -346,7 +345,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
       best_snr = std::max(best_snr, s.line.snr);
       linked[s.window].insert(s.line.frequency_hz);
     }
-    const double p = normal_cdf(best_snr - settings.threshold_snr);  // a track near threshold may be noise
+    const double p = phi_cdf(best_snr - settings.threshold_snr);  // a track near threshold may be noise
     std::size_t next = 0;
     const WindowLine* last = nullptr;
     double last_time = 0.0;
@@ -415,7 +414,7 @@ TrackingResult track_record(const KnownDevice& device, std::pair<double, double>
     const double certain = r.count[w];
     r.count[w] += static_cast<double>(std::count_if(uncertain[w].begin(), uncertain[w].end(), [](double q) { return q >= 0.5; }));
     for (const WindowLine& l : lines[w].lines)
-      if (!linked[w].contains(l.frequency_hz)) uncertain[w].push_back(normal_cdf(l.snr - settings.threshold_snr));
+      if (!linked[w].contains(l.frequency_hz)) uncertain[w].push_back(phi_cdf(l.snr - settings.threshold_snr));
     const auto [low, high] = poisson_binomial_interval(uncertain[w]);
     r.count_low[w] = std::min(r.count[w], certain + static_cast<double>(low));
     r.count_high[w] = std::max(r.count[w], certain + static_cast<double>(high));

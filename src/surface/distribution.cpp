@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "surface/standard_normal.hpp"
+#include "core/standard_normal.hpp"
 
 namespace stengmc {
 

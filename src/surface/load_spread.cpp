@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "surface/standard_normal.hpp"
+#include "core/standard_normal.hpp"
 
 namespace stengmc {
 

@@ -4,8 +4,8 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/standard_normal.hpp"
 #include "surface/continuous_law.hpp"
-#include "surface/standard_normal.hpp"
 
 namespace stengmc {
 

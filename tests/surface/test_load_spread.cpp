@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/random_stream.hpp"
+#include "core/standard_normal.hpp"
 #include "surface/load_spread.hpp"
-#include "surface/standard_normal.hpp"
 
 namespace stengmc {
 namespace {

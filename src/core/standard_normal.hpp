@@ -1,6 +1,6 @@
 #pragma once
 //! The standard normal cdf and density, safe at +-infinity (copulas, the normal and
-//! lognormal families' moments).
+//! lognormal families' moments, residual tests' tails, tracking's detection odds).
 #include <cmath>
 
 namespace stengmc {
