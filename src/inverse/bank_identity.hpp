@@ -19,9 +19,11 @@ namespace stengmc {
 //! to the noise (fitting_chi2, noise_judge.hpp), not only above 1.5 M sigma^2.
 //! 4: under a prior of coloured noise the search's re-seating also judges its fits whitened
 //! (NoiseJudge), as the nested searches already did; narrow splits (LineSearch::split).
-//! 5: a fit fits to its noise only if no band of its residual's spectrum stands out
-//! (residual_bands.hpp), not only its chi^2.
-inline constexpr int ESTIMATOR_VERSION = 5;
+//! 5: a fit fits to its noise only if no tenth of its residual holds more than the noise
+//! allows (residual_segments.hpp), not only its chi^2.
+//! 6: re-seating also crosses close atoms' onsets and loads with their k's free, and merges
+//! close atoms to free one for a missing line (LineSearch::cross, LineSearch::merge).
+inline constexpr int ESTIMATOR_VERSION = 6;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

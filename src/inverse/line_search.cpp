@@ -34,6 +34,10 @@ constexpr std::size_t REPLACEMENTS = 3;
 constexpr std::size_t NARROW_SPLITS = 2;
 constexpr double NARROW_BAND_WIDTHS = 2.0;
 constexpr double NARROW_SPLIT_WIDTHS = 0.125;
+// Merges (LineSearch::merge): pairs of atoms closer than this many line widths, the closest
+// MERGES_TRIED of them.
+constexpr double MERGE_WIDTHS = 1.0;
+constexpr std::size_t MERGES_TRIED = 3;
 
 double dot(std::span<const double> x, std::span<const double> y) {
   double s = 0.0;
@@ -218,6 +222,8 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
     replace(fit);
     if (fit.residual_v2 < before) improved = true;
     if (!fits_noise(fit) && exchange(fit)) improved = true;
+    if (!fits_noise(fit) && cross(fit)) improved = true;
+    if (!fits_noise(fit) && merge(fit)) improved = true;
     if (!improved) return;
   }
 }
@@ -304,6 +310,75 @@ bool LineSearch::exchange(OrderFit& fit) {
     if (!improved) break;
   }
   return kept;
+}
+
+bool LineSearch::cross(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  if (!layout.onset_free && !layout.load_per_atom) return false;
+  const AtomModel& model = fit_->model().atoms().model();
+  const double d = fit.state.damping_rate_per_s;
+  bool kept = false;
+  for (std::size_t i = 0; i < fit.state.atoms.size() && !fits_noise(fit); ++i)
+    for (std::size_t j = i + 1; j < fit.state.atoms.size() && !fits_noise(fit); ++j) {
+      const AtomParameters &x = fit.state.atoms[i], &y = fit.state.atoms[j];
+      const double width = 4.0 * d / model.tail_angular_frequency(x, d);
+      if (std::abs(std::log(x.stiffness_n_per_m / y.stiffness_n_per_m)) >= MERGE_WIDTHS * width) continue;
+      FitState trial = fit.state;
+      std::swap(trial.atoms[i].onset_s, trial.atoms[j].onset_s);
+      std::swap(trial.atoms[i].load_n, trial.atoms[j].load_n);
+      std::vector<bool> active(trial.atoms.size(), false);
+      active[i] = active[j] = true;
+      OrderFit refitted = fit_->refine(std::move(trial), active, false, false, options_.max_iterations);
+      if (std::getenv("STENGMC_DEBUG_SEARCH"))
+        std::fprintf(stderr, "cross k %.3f on %.3f and k %.3f on %.3f: rss %.4g -> %.4g\n", x.stiffness_n_per_m, 1e6 * x.onset_s,
+                     y.stiffness_n_per_m, 1e6 * y.onset_s, fit.residual_v2, refitted.residual_v2);
+      if (refitted.residual_v2 < fit.residual_v2) fit = std::move(refitted), kept = true;
+    }
+  return kept;
+}
+
+bool LineSearch::merge(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  if (!layout.onset_free && !layout.load_per_atom) return false;
+  const AtomModel& model = fit_->model().atoms().model();
+  const std::size_t n = fit.state.atoms.size();
+  if (n < 2) return false;
+  const double d = fit.state.damping_rate_per_s;
+  const std::vector<double> zeros(fit_->record().size(), 0.0);
+  // Pairs by their distance in line widths (a width: 4 d / omega in ln k), the closest first.
+  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> pairs;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const AtomParameters &x = fit.state.atoms[i], &y = fit.state.atoms[j];
+      const double width = 4.0 * d / model.tail_angular_frequency(x, d);
+      const double apart = std::abs(std::log(x.stiffness_n_per_m / y.stiffness_n_per_m)) / width;
+      if (apart < MERGE_WIDTHS) pairs.push_back({apart, {i, j}});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  for (std::size_t c = 0; c < pairs.size() && c < MERGES_TRIED; ++c) {
+    auto [i, j] = pairs[c].second;
+    // The weaker of the two goes; the stronger, refitted with all the others, takes the pair's
+    // line, so that the residual shows what is missing rather than the pair's own remainder.
+    const double ei = proposals_->score(fit.state.atoms[i], zeros, fit.state.amplitude, d).energy_v2;
+    const double ej = proposals_->score(fit.state.atoms[j], zeros, fit.state.amplitude, d).energy_v2;
+    FitState merged = fit.state;
+    merged.atoms.erase(merged.atoms.begin() + static_cast<std::ptrdiff_t>(ei < ej ? i : j));
+    const OrderFit one = fit_->refine(std::move(merged), {}, false, false, options_.max_iterations);
+    const LineCandidate added = best_addition(one);
+    if (added.energy_v2 <= 0.0) continue;
+    FitState trial = one.state;
+    trial.atoms.push_back(added.atom);
+    OrderFit refitted = fit_->refine(std::move(trial), {}, false, false, options_.max_iterations);
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "merge k %.3f and %.3f (%.2f widths apart), add k %.3f N %.3g on %.3f: rss %.4g -> %.4g\n",
+                   fit.state.atoms[i].stiffness_n_per_m, fit.state.atoms[j].stiffness_n_per_m, pairs[c].first,
+                   added.atom.stiffness_n_per_m, added.atom.load_n, 1e6 * added.atom.onset_s, fit.residual_v2, refitted.residual_v2);
+    if (refitted.residual_v2 < fit.residual_v2) {
+      fit = std::move(refitted);
+      return true;
+    }
+  }
+  return false;
 }
 
 void LineSearch::replace(OrderFit& fit) {

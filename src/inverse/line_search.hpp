@@ -89,6 +89,17 @@ class LineSearch {
   //! load whose breakaway comes a period late, an onset on another's plateau). Kept where the
   //! refit with its neighbours lowers the misfit.
   void replace(OrderFit& fit);
+  //! Two atoms within a line width of each other exchange onsets and loads and are refitted,
+  //! their k's free: close lines' k's must cross for their onsets to trade places, which
+  //! exchange's screening (k held) scores as a loss. Kept where the misfit falls.
+  bool cross(OrderFit& fit);
+  //! The inverse of split: two atoms within a line width of each other that share one
+  //! asperity's line (one atom's breakaway and amplitude patched by a second at the same k)
+  //! while another asperity is missing, which no local fit undoes. The weaker of the pair is
+  //! taken out, the rest refitted in full, the best addition on that residual put in and all
+  //! refitted; kept where that lowers the misfit. The closest few pairs are tried. Returns
+  //! whether one was kept.
+  bool merge(OrderFit& fit);
   //! Two asperities within a line width or two of each other, fitted as one atom, with the
   //! greedy path's next atom spent elsewhere (no single atom added beside the merged one
   //! explains the pair): the best fit with one of `fit`'s atoms split in two (half a line
