@@ -34,8 +34,8 @@ constexpr std::size_t REPLACEMENTS = 3;
 constexpr std::size_t NARROW_SPLITS = 2;
 constexpr double NARROW_BAND_WIDTHS = 2.0;
 constexpr double NARROW_SPLIT_WIDTHS = 0.125;
-// Merges (LineSearch::merge): pairs of atoms closer than this many line widths, the closest
-// MERGES_TRIED of them.
+// Crosses and merges (LineSearch::cross, LineSearch::merge): pairs of atoms closer than this
+// many line widths; merges try the closest MERGES_TRIED of them.
 constexpr double MERGE_WIDTHS = 1.0;
 constexpr std::size_t MERGES_TRIED = 3;
 
