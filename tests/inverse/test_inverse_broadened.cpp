@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "core/random_stream.hpp"
@@ -74,6 +75,18 @@ void expect_count_and_stiffnesses(const Inversion& result, const std::vector<Sim
     EXPECT_NEAR(result.raw.lines[i].stiffness_n_per_m / truth[i].stiffness_n_per_m, 1.0, 1e-2) << "line " << i;
 }
 
+//! A loads-family record under the broadened prior: asperities of stiffness k [N/m] and load
+//! factor x the device's load, all from t = 0, white noise at `snr_db` from stream `seed`;
+//! the count exact and each k within 1 %.
+void expect_loads_record_counted(const std::vector<std::pair<double, double>>& k_and_load_factor, double snr_db,
+                                 std::uint64_t seed) {
+  const InverseSetup setup = broadened_vb10_setup();
+  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
+  std::vector<SimulatedAsperity> truth;
+  for (const auto& [k, factor] : k_and_load_factor) truth.push_back({k, factor * setup.device.asperity.normal_load_n, 0.0});
+  expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, snr_db, seed), truth);
+}
+
 TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
   // The must-show record: 100 us at 100 MHz, a prior of loads spread by a CV of
   // 0.2-0.6 and onsets within 20 us; four asperities whose loads lie 0.6-1.5 x the device's
@@ -97,14 +110,9 @@ TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
 // draw as on the held-out one). Split a quarter of a width apart where the residual's power
 // around a line is largest, the refit finds both (LineSearch::split's narrow splits).
 TEST(InverseBroadened, TwoAsperitiesAQuarterLineWidthApartWithUnequalLoadsAreBothFound) {
-  const InverseSetup setup = broadened_vb10_setup();
-  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const double n0 = setup.device.asperity.normal_load_n;
-  const std::vector<SimulatedAsperity> truth = {
-      {50.03, 0.415 * n0, 0.0}, {51.33, 1.112 * n0, 0.0}, {52.72, 1.148 * n0, 0.0}, {64.89, 0.811 * n0, 0.0},
-      {72.55, 0.744 * n0, 0.0},  {72.99, 1.42 * n0, 0.0},   {76.35, 0.679 * n0, 0.0},  {87.15, 1.339 * n0, 0.0},
-      {105.82, 1.549 * n0, 0.0}, {112.11, 0.954 * n0, 0.0}, {114.89, 1.016 * n0, 0.0}, {120.82, 0.877 * n0, 0.0}};
-  expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, 25.2, 11), truth);
+  expect_loads_record_counted({{50.03, 0.415}, {51.33, 1.112}, {52.72, 1.148}, {64.89, 0.811}, {72.55, 0.744}, {72.99, 1.42},
+                               {76.35, 0.679}, {87.15, 1.339}, {105.82, 1.549}, {112.11, 0.954}, {114.89, 1.016}, {120.82, 0.877}},
+                              25.2, 11);
 }
 
 // The fourteen asperities (stiffnesses and loads, all from t = 0) of the loads family's
@@ -115,15 +123,21 @@ TEST(InverseBroadened, TwoAsperitiesAQuarterLineWidthApartWithUnequalLoadsAreBot
 // free an atom for the missing line (LineSearch::merge; LineSearch::cross also runs) reaches
 // the fit of the truth. With both moves switched off this record still gets 16 (checked).
 TEST(InverseBroadened, FourteenUnequalLoadsAreCountedOnceAtomsSharingALineAreMerged) {
-  const InverseSetup setup = broadened_vb10_setup();
-  const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const double n0 = setup.device.asperity.normal_load_n;
-  const std::vector<SimulatedAsperity> truth = {
-      {36.6764, 1.10178 * n0, 0.0}, {40.9726, 0.978608 * n0, 0.0}, {61.2235, 0.863717 * n0, 0.0}, {62.5241, 1.16465 * n0, 0.0},
-      {66.1927, 1.20662 * n0, 0.0}, {67.9633, 1.57179 * n0, 0.0},  {71.7745, 0.739067 * n0, 0.0}, {77.0988, 0.331769 * n0, 0.0},
-      {95.3438, 0.488244 * n0, 0.0}, {102.3538, 1.70997 * n0, 0.0}, {103.7783, 0.704793 * n0, 0.0}, {106.6511, 0.671262 * n0, 0.0},
-      {119.9542, 1.16248 * n0, 0.0}, {206.5409, 1.48663 * n0, 0.0}};
-  expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, 21.96, 12), truth);
+  expect_loads_record_counted({{36.6764, 1.10178},
+                               {40.9726, 0.978608},
+                               {61.2235, 0.863717},
+                               {62.5241, 1.16465},
+                               {66.1927, 1.20662},
+                               {67.9633, 1.57179},
+                               {71.7745, 0.739067},
+                               {77.0988, 0.331769},
+                               {95.3438, 0.488244},
+                               {102.3538, 1.70997},
+                               {103.7783, 0.704793},
+                               {106.6511, 0.671262},
+                               {119.9542, 1.16248},
+                               {206.5409, 1.48663}},
+                              21.96, 12);
 }
 
 // Records of the ideal device under the broadened prior of studies/inverse/device_vb10_real.toml
