@@ -66,10 +66,11 @@ py::dict to_dict(const Inversion& inv, const std::string& bank_path) {
   }
   count["raw_probability"] = to_numpy(std::move(raw));
 
-  std::vector<double> k, se, frequency, amplitude, separation;
+  std::vector<double> k, se, inflation, frequency, amplitude, separation;
   for (const EstimatedLine& line : e.lines) {
     k.push_back(line.stiffness_n_per_m);
     se.push_back(line.log_stiffness_se);
+    inflation.push_back(line.se_inflation);
     frequency.push_back(line.frequency_hz);
     amplitude.push_back(line.amplitude_v);
     separation.push_back(line.nearest_separation_hz);
@@ -79,6 +80,7 @@ py::dict to_dict(const Inversion& inv, const std::string& bank_path) {
   lines["stiffness_low"] = to_numpy(c.line_low);
   lines["stiffness_high"] = to_numpy(c.line_high);
   lines["log_stiffness_se"] = to_numpy(std::move(se));
+  lines["se_inflation"] = to_numpy(std::move(inflation));
   lines["frequency_hz"] = to_numpy(std::move(frequency));
   lines["amplitude_v"] = to_numpy(std::move(amplitude));
   lines["nearest_separation_hz"] = to_numpy(std::move(separation));

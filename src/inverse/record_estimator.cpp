@@ -8,6 +8,7 @@
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "inverse/sample_statistics.hpp"
+#include "inverse/se_inflation.hpp"
 #include "spectral/amplitude_spectrum.hpp"
 
 namespace stengmc {
@@ -205,11 +206,11 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
 
   // Lines and their standard errors: H^-1 with H as in the evidence (J^T J / sigma^2 plus the
   // prior's curvatures, so a coincident pair gets a wide but finite error).
-  Eigen::MatrixXd covariance;
+  Eigen::MatrixXd covariance, curvature;
   if (out.count > 0) {
-    Eigen::MatrixXd h = best.normal_matrix / (sigma * sigma);
-    h.diagonal() += prior_curvatures(out.count, prior_, layout_, loads_);
-    covariance = h.inverse();
+    curvature = best.normal_matrix / (sigma * sigma);
+    curvature.diagonal() += prior_curvatures(out.count, prior_, layout_, loads_);
+    covariance = curvature.inverse();
     // Said here, not by a writer refusing a NaN later.
     if (!covariance.allFinite())
       throw ModelError("the fit of " + std::to_string(out.count) + " atoms to the record is not finite (its parameters or "
@@ -227,6 +228,7 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     const auto base = static_cast<Eigen::Index>(i * per_atom);
     line.stiffness_n_per_m = a.stiffness_n_per_m;
     line.log_stiffness_se = std::sqrt(std::max(0.0, covariance(base, base)));
+    line.se_inflation = se_inflation(curvature, base, per_atom, layout_.shared());
     line.frequency_hz = model.tail_angular_frequency(a, d) / (2.0 * PI);
     line.amplitude_v = best.state.amplitude * model_.volts_per_unit() * std::min(1.0, model.carried_phase(a));
     line.load_n = a.load_n;

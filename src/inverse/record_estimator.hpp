@@ -25,6 +25,7 @@ namespace stengmc {
 struct EstimatedLine {
   double stiffness_n_per_m = 0.0;
   double log_stiffness_se = 0.0;        //!< standard error of ln k (Laplace) [-]
+  double se_inflation = 1.0;            //!< that error over its value were the other lines known (se_inflation.hpp) [-]
   double frequency_hz = 0.0;            //!< its tail's frequency [Hz]
   double amplitude_v = 0.0;             //!< the line's amplitude at breakaway [V]
   double nearest_separation_hz = 0.0;   //!< to the nearest other identified line (0 alone) [Hz]

@@ -79,7 +79,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
   std::vector<double> noise, residual, snr, band, seconds, naive;
   std::vector<std::int64_t> outside, estimate, low, high, offsets{0}, line_record, intervals;
   std::vector<std::vector<double>> probability, raw_probability;
-  std::vector<double> k, k_low, k_high, se, frequency, amplitude, separation;
+  std::vector<double> k, k_low, k_high, se, inflation, frequency, amplitude, separation;
   std::vector<double> median, median_low, median_high, sd, sd_low, sd_high;
   std::vector<std::vector<LawFit>> laws;
   for (std::size_t r = 0; r < inversions.size(); ++r) {
@@ -113,6 +113,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
       k_low.push_back(c.line_low[i]);
       k_high.push_back(c.line_high[i]);
       se.push_back(line.log_stiffness_se);
+      inflation.push_back(line.se_inflation);
       frequency.push_back(line.frequency_hz);
       amplitude.push_back(line.amplitude_v);
       separation.push_back(line.nearest_separation_hz);
@@ -151,6 +152,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
   f.write("/inverse/lines/stiffness_low", k_low);
   f.write("/inverse/lines/stiffness_high", k_high);
   f.write("/inverse/lines/log_stiffness_se", se);
+  f.write("/inverse/lines/se_inflation", inflation);
   f.write("/inverse/lines/frequency_hz", frequency);
   f.write("/inverse/lines/amplitude_v", amplitude);
   f.write("/inverse/lines/nearest_separation_hz", separation);

@@ -226,6 +226,7 @@ constexpr std::array TERMS{
     Term{"/inverse/lines/stiffness_low", "N/m", "lower end of the stiffness interval", "line"},
     Term{"/inverse/lines/stiffness_high", "N/m", "upper end of the stiffness interval", "line"},
     Term{"/inverse/lines/log_stiffness_se", "1", "standard error of the log stiffness", "line"},
+    Term{"/inverse/lines/se_inflation", "1", "log stiffness error over its value were the other lines known", "line"},
     Term{"/inverse/lines/frequency_hz", "Hz", "line frequency", "line"},
     Term{"/inverse/lines/amplitude_v", "V", "line amplitude", "line"},
     Term{"/inverse/lines/nearest_separation_hz", "Hz", "distance to the nearest other line", "line"},

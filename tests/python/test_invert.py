@@ -52,6 +52,7 @@ INVERSE_FILE = {
     "count/raw_probability": ("count", "raw_probability"),
     "lines/stiffness_n_per_m": ("lines", "stiffness_n_per_m"), "lines/stiffness_low": ("lines", "stiffness_low"),
     "lines/stiffness_high": ("lines", "stiffness_high"), "lines/log_stiffness_se": ("lines", "log_stiffness_se"),
+    "lines/se_inflation": ("lines", "se_inflation"),
     "lines/frequency_hz": ("lines", "frequency_hz"), "lines/amplitude_v": ("lines", "amplitude_v"),
     "lines/nearest_separation_hz": ("lines", "nearest_separation_hz"),
     "stiffness/median": ("stiffness", "median"), "stiffness/median_low": ("stiffness", "median_low"),
