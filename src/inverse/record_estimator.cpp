@@ -228,7 +228,7 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage) {
     const auto base = static_cast<Eigen::Index>(i * per_atom);
     line.stiffness_n_per_m = a.stiffness_n_per_m;
     line.log_stiffness_se = std::sqrt(std::max(0.0, covariance(base, base)));
-    line.se_inflation = se_inflation(curvature, base, per_atom, layout_.shared());
+    line.se_inflation = se_inflation(curvature, base, per_atom, layout_.shared(), covariance(base, base));
     line.frequency_hz = model.tail_angular_frequency(a, d) / (2.0 * PI);
     line.amplitude_v = best.state.amplitude * model_.volts_per_unit() * std::min(1.0, model.carried_phase(a));
     line.load_n = a.load_n;
