@@ -5,6 +5,7 @@
 //! and the checks the verdict speaks from (docs/inverse.md). Calibration
 //! (calibration_maps.hpp) turns the raw posterior and spreads into calibrated ones; this class
 //! knows nothing of banks.
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -46,6 +47,20 @@ struct ResidualChecks {
   double late = 1.0;                //!< residual power over the last third of the record over its expectation [-]
 };
 
+//! A fit started from a population given beside the record, refined in full (a development
+//! check, the "oracle": on a simulated record, started from the truth, it says whether a wrong
+//! answer is the search's failure, the truth explaining the record better than what was
+//! found, or the model's, the truth itself not explaining it to the noise). Misfits are
+//! whitened RSS / (M sigma^2) with the estimate's final noise model.
+struct ReferenceFit {
+  double start_misfit = 0.0;         //!< at the given population, shared parameters as given [-]
+  double misfit = 0.0;               //!< refined in full (atoms and shared parameters) [-]
+  double penalty = 0.0;              //!< its loads' prior term, -2 ln p [-]
+  std::size_t iterations = 0;        //!< Levenberg–Marquardt steps the refinement took
+  double found_misfit = -1.0;        //!< the search's fit with as many atoms (-1: the search made none) [-]
+  double found_penalty = 0.0;        //!< its loads' prior term [-]
+};
+
 struct RecordEstimate {
   NoiseLevel noise;                     //!< white level from the band above the prior's lines
   NoiseSpectrum spectrum;               //!< the fitted noise spectrum (coloured prior only)
@@ -64,6 +79,7 @@ struct RecordEstimate {
   bool more_than_prior_allows = false;  //!< one atom more than the prior's largest count still explains much
   double signal_to_noise_db = 0.0;      //!< 10 log10(var(model) / sigma^2) of the chosen fit [dB]
   double seconds = 0.0;                 //!< CPU time of the estimate (its thread's) [s]
+  std::optional<ReferenceFit> reference;  //!< with a reference population only
 };
 
 class RecordEstimator {
@@ -71,7 +87,9 @@ class RecordEstimator {
   //! Holds FFT plans: one estimator per thread.
   RecordEstimator(const AtomLibrary& atoms, const InversePrior& prior, const LineSearchOptions& options = {});
 
-  RecordEstimate estimate(std::span<const double> voltage);
+  //! With `reference` (atoms and shared parameters to start from), its refit is reported
+  //! beside the estimate (ReferenceFit), which it does not change.
+  RecordEstimate estimate(std::span<const double> voltage, const FitState* reference = nullptr);
 
   [[nodiscard]] const AtomLibrary& atoms() const { return *atoms_; }
   [[nodiscard]] const InversePrior& prior() const { return prior_; }

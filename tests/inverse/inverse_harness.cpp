@@ -2,10 +2,15 @@
 // [inverse] prior exactly as a calibration does (its prior study, realisation by realisation,
 // every departure the prior draws), inverts each with RecordEstimator (raw, uncalibrated), and
 // prints the count's exact rate and RMSE, the median-k error and the sd(ln k) RMSE, by n bin,
-// with the CPU time per record. Not a test: a measuring tool whose figures go in the commit
+// with the CPU time per record; and for each record the oracle (RecordEstimator's reference
+// fit): the search's answer beside the truth refined in full, so a wrong count is told apart
+// as the search's failure (the truth, refined, explains the record better at its n) or the
+// model's (the truth, refined, does not explain it to the noise). Not a test: a measuring tool whose figures go in the commit
 // messages and docs/inverse.md's development notes.
 //
-//   inverse_harness DEVICE.toml [records] [seed] [verbose] [only record]
+//   inverse_harness DEVICE.toml [records] [seed] [verbose] [only record, -1: all] [SIMULATED.toml]
+// With SIMULATED.toml the records are drawn from that device's prior instead (e.g. one
+// departure alone) and estimated with DEVICE.toml's, as a validation family is.
 #include <omp.h>
 
 #include <algorithm>
@@ -34,7 +39,21 @@ struct Outcome {
   std::size_t n = 0, n_hat = 0;
   double median_true = 0, median_hat = 0, sd_true = 0, sd_hat = 0, seconds = 0, simulate_seconds = 0, top_probability = 0;
   double k_error = 0;  // largest |ln k_hat / k| over lines, when counted exactly
+  ReferenceFit reference;
 };
+
+// The oracle's verdict on a record: its refined truth beside the search's fit of as many atoms.
+// A misfit this far above 1 is ~7 standard deviations of a 10^4-sample record's at the noise
+// (sqrt(2/M) = 0.014): the truth, refined, does not explain the record.
+constexpr double MODEL_FAILS_MISFIT = 1.1;
+enum class Blame { none, search, model };
+Blame blame(const Outcome& o, std::size_t samples) {
+  const ReferenceFit& r = o.reference;
+  if (r.misfit > MODEL_FAILS_MISFIT) return Blame::model;
+  const double m = static_cast<double>(samples);
+  const bool search_worse = r.found_misfit < 0.0 || r.found_misfit * m + r.found_penalty > r.misfit * m + r.penalty + 1.0;
+  return o.n != o.n_hat || search_worse ? Blame::search : Blame::none;
+}
 
 void report(const char* label, const std::vector<Outcome>& all, std::size_t lo, std::size_t hi) {
   double se = 0, sd_se = 0, seconds = 0;
@@ -58,7 +77,7 @@ void report(const char* label, const std::vector<Outcome>& all, std::size_t lo, 
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: inverse_harness DEVICE.toml [records] [seed] [verbose] [only record]\n");
+    std::fprintf(stderr, "usage: inverse_harness DEVICE.toml [records] [seed] [verbose] [only record, -1: all] [SIMULATED.toml]\n");
     return 2;
   }
   try {
@@ -69,12 +88,13 @@ int main(int argc, char** argv) {
     // A sixth argument estimates that one record alone (to follow its search with STENGMC_DEBUG_SEARCH).
     const long only = argc > 5 ? std::atol(argv[5]) : -1;
     const InverseSetup setup = inverse_setup(device_study);
+    const InverseSetup simulated = argc > 6 ? inverse_setup(read_study(argv[6], std::nullopt)) : setup;
     const double t0 = omp_get_wtime();
     const std::unique_ptr<AtomLibrary> atoms = build_atom_library(setup);
     std::printf("atoms built in %.1f s (%zu shapes, check %.2g)\n", omp_get_wtime() - t0,
                 atoms->shapes().data().pi_nodes.size() * atoms->shapes().data().zeta_nodes.size(), atoms->check_error());
     const auto [s_low, s_high] = setup.prior.support();
-    const std::string text = prior_study_text(setup.device, setup.prior, records, seed, 1e5, 1e7, one_asperity_rms_v(*atoms, setup.prior));
+    const std::string text = prior_study_text(simulated.device, simulated.prior, records, seed, 1e5, 1e7, one_asperity_rms_v(*atoms, simulated.prior));
     const StudyFile prior = parse_study_file(text, "harness prior", std::nullopt);
     (void)s_low, (void)s_high;
     std::vector<Outcome> outcomes(records);
@@ -92,7 +112,20 @@ int main(int argc, char** argv) {
         if (!record.valid) continue;
         const std::vector<double>& k = record.asperities[static_cast<std::size_t>(AsperityColumn::stiffness_n_per_m)];
         try {
-          const RecordEstimate e = estimator.estimate(record.measured_voltage_v);
+          // The truth's loads and onsets: the realisation's population drawn again.
+          std::vector<ParameterOverride> overrides;
+          for (const RecordExtra& x : record.extras)
+            if (x.name.rfind("draw:", 0) == 0) overrides.push_back({x.name.substr(5), x.values.front()});
+          const Study drawn = study_for_realisation(parse_study(text, "harness prior", std::nullopt, overrides), r);
+          std::vector<Asperity> truth = drawn.asperities;
+          std::sort(truth.begin(), truth.end(), [](const Asperity& a, const Asperity& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
+          // The oracle's start: the true atoms, the device's shared parameters as written (a
+          // record of the tolerance prior has its own, which the refinement finds).
+          FitState reference;
+          reference.damping_rate_per_s = estimator.layout().nominal_damping_rate;
+          for (const Asperity& a : truth) reference.atoms.push_back({a.stiffness_n_per_m, a.normal_load_n, a.onset_s});
+          const RecordEstimate e = estimator.estimate(record.measured_voltage_v, &reference);
+          o.reference = *e.reference;
           o.valid = true;
           o.n = k.size();
           o.n_hat = e.count;
@@ -109,18 +142,14 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < truth.size(); ++i) o.k_error = std::max(o.k_error, std::abs(std::log(e.lines[i].stiffness_n_per_m / truth[i])));
           }
           if (verbose || o.n != o.n_hat) {
-            // The truth's loads and onsets: the realisation's population drawn again.
-            std::vector<ParameterOverride> overrides;
-            for (const RecordExtra& x : record.extras)
-              if (x.name.rfind("draw:", 0) == 0) overrides.push_back({x.name.substr(5), x.values.front()});
-            const Study drawn = study_for_realisation(parse_study(text, "harness prior", std::nullopt, overrides), r);
-            std::vector<Asperity> truth = drawn.asperities;
-            std::sort(truth.begin(), truth.end(), [](const Asperity& a, const Asperity& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
 #pragma omp critical
             {
               std::printf("record %zu: n %zu -> %zu (P %.3f, %.0f ms; misfit %.2f, line band %.2f, low %.2f, early %.2f, late %.2f)\n", r,
                           o.n, o.n_hat, o.top_probability, 1e3 * e.seconds, e.checks.misfit, e.checks.line_band,
                           e.checks.low_band, e.checks.early, e.checks.late);
+              const ReferenceFit& f = o.reference;
+              std::printf("   oracle: truth %.3f, refined %.3f (penalty %.1f, %zu steps); the search's n = %zu: %.3f (penalty %.1f)\n",
+                          f.start_misfit, f.misfit, f.penalty, f.iterations, o.n, f.found_misfit, f.found_penalty);
               if (verbose > 1 || o.n != o.n_hat) {
                 for (const Asperity& a : truth)
                   std::printf("   true k %8.3f N %.3e on %6.3f us\n", a.stiffness_n_per_m, a.normal_load_n, 1e6 * a.onset_s);
@@ -143,6 +172,16 @@ int main(int argc, char** argv) {
     std::printf("%zu records (%d valid), seed %llu: wall %.1f s; simulation %.0f ms per record\n", records, valid,
                 static_cast<unsigned long long>(seed), omp_get_wtime() - start, valid ? 1e3 * simulate / valid : 0.0);
     report("all", outcomes, 0, 1000);
+    int blamed[3] = {0, 0, 0}, wrong_blamed[3] = {0, 0, 0};
+    for (const Outcome& o : outcomes) {
+      if (!o.valid) continue;
+      const auto b = static_cast<std::size_t>(blame(o, setup.grid.samples));
+      ++blamed[b];
+      if (o.n != o.n_hat) ++wrong_blamed[b];
+    }
+    std::printf("oracle (the truth refined, misfit > %.1f: the model fails; else better than the search's fit of its n, or the count "
+                "wrong: the search fails): model fails %d (wrong counts %d), search fails %d (wrong counts %d), neither %d\n",
+                MODEL_FAILS_MISFIT, blamed[2], wrong_blamed[2], blamed[1], wrong_blamed[1], blamed[0]);
     report("n 0", outcomes, 0, 0);
     report("n 1-4", outcomes, 1, 4);
     report("n 5-8", outcomes, 5, 8);
