@@ -196,7 +196,8 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
     timespec reference_start{}, reference_end{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &reference_start);
     // Far more steps than the search allows: from the truth the refinement has no local
-    // minimum to escape, but the shared parameters, 5 % off, can take a long walk.
+    // minimum to escape, but the shared parameters it frees (damping, load factor; amplitude
+    // and offset solved) can take a long walk to a device's own values.
     constexpr std::size_t REFERENCE_ITERATIONS = 300;
     const double scale = sigma * sigma * static_cast<double>(samples);
     const std::size_t n = reference->atoms.size();

@@ -57,7 +57,10 @@ struct ReferenceFit {
   double misfit = 0.0;               //!< refined in full (atoms and shared parameters) [-]
   double penalty = 0.0;              //!< its loads' prior term, -2 ln p [-]
   std::size_t iterations = 0;        //!< Levenberg–Marquardt steps the refinement took
-  double found_misfit = -1.0;        //!< the search's fit with as many atoms (-1: the search made none) [-]
+  //! The search's fit with as many atoms, as the estimator left it (-1: the search made none).
+  //! Under coloured noise an order below the chosen count - 1 was fitted against white noise
+  //! and only re-weighed whitened, not refitted, so it may lie a little above its optimum [-].
+  double found_misfit = -1.0;
   double found_penalty = 0.0;        //!< its loads' prior term [-]
 };
 

@@ -43,16 +43,23 @@ struct Outcome {
 };
 
 // The oracle's verdict on a record: its refined truth beside the search's fit of as many atoms.
-// A misfit this far above 1 is ~7 standard deviations of a 10^4-sample record's at the noise
-// (sqrt(2/M) = 0.014): the truth, refined, does not explain the record.
+// A misfit above 1.1 is ~3 standard deviations of a 10^4-sample record's at the noise, counting
+// the chi^2 term sqrt(2/M) = 0.014 and the noise level's own estimate (a median over a few
+// thousand correlated periodogram bins, ~0.02-0.03): the truth, refined, does not explain the
+// record. Misfits are relative to the estimator's sigma, which carries the model's floor, so a
+// model failure can hide below it, never the other way.
 constexpr double MODEL_FAILS_MISFIT = 1.1;
-enum class Blame { none, search, model };
+// search: the truth refined beats the search's fit of its n by more than 1 in chi^2 (with the
+// loads' prior term), or the search made none; count: it does not, and the count is still
+// wrong (the evidence chose another n among fits as good as the truth's).
+enum class Blame { none, search, count, model };
 Blame blame(const Outcome& o, std::size_t samples) {
   const ReferenceFit& r = o.reference;
   if (r.misfit > MODEL_FAILS_MISFIT) return Blame::model;
   const double m = static_cast<double>(samples);
   const bool search_worse = r.found_misfit < 0.0 || r.found_misfit * m + r.found_penalty > r.misfit * m + r.penalty + 1.0;
-  return o.n != o.n_hat || search_worse ? Blame::search : Blame::none;
+  if (search_worse) return Blame::search;
+  return o.n != o.n_hat ? Blame::count : Blame::none;
 }
 
 void report(const char* label, const std::vector<Outcome>& all, std::size_t lo, std::size_t hi) {
@@ -85,7 +92,7 @@ int main(int argc, char** argv) {
     const std::size_t records = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 100;
     const std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
     const int verbose = argc > 4 ? std::atoi(argv[4]) : 0;
-    // A sixth argument estimates that one record alone (to follow its search with STENGMC_DEBUG_SEARCH).
+    // A fifth argument (-1: all) estimates that one record alone (to follow its search with STENGMC_DEBUG_SEARCH).
     const long only = argc > 5 ? std::atol(argv[5]) : -1;
     const InverseSetup setup = inverse_setup(device_study);
     const InverseSetup simulated = argc > 6 ? inverse_setup(read_study(argv[6], std::nullopt)) : setup;
@@ -119,8 +126,10 @@ int main(int argc, char** argv) {
           const Study drawn = study_for_realisation(parse_study(text, "harness prior", std::nullopt, overrides), r);
           std::vector<Asperity> truth = drawn.asperities;
           std::sort(truth.begin(), truth.end(), [](const Asperity& a, const Asperity& b) { return a.stiffness_n_per_m < b.stiffness_n_per_m; });
-          // The oracle's start: the true atoms, the device's shared parameters as written (a
-          // record of the tolerance prior has its own, which the refinement finds).
+          // The oracle's start: the true atoms, the device's shared parameters as written. A
+          // record of the tolerance prior has its own; the refinement moves the damping, the
+          // load factor, the amplitude and the offset, not the friction coefficients (which the
+          // atoms' shapes hold fixed), so there it is the best the model can do, not the truth.
           FitState reference;
           reference.damping_rate_per_s = estimator.layout().nominal_damping_rate;
           for (const Asperity& a : truth) reference.atoms.push_back({a.stiffness_n_per_m, a.normal_load_n, a.onset_s});
@@ -137,9 +146,9 @@ int main(int argc, char** argv) {
           for (std::size_t j = 0; j < e.posterior.counts.size(); ++j)
             if (e.posterior.counts[j] == e.count) o.top_probability = e.posterior.probability[j];
           if (o.n == o.n_hat) {
-            std::vector<double> truth = k;
-            std::sort(truth.begin(), truth.end());
-            for (std::size_t i = 0; i < truth.size(); ++i) o.k_error = std::max(o.k_error, std::abs(std::log(e.lines[i].stiffness_n_per_m / truth[i])));
+            std::vector<double> true_k = k;
+            std::sort(true_k.begin(), true_k.end());
+            for (std::size_t i = 0; i < true_k.size(); ++i) o.k_error = std::max(o.k_error, std::abs(std::log(e.lines[i].stiffness_n_per_m / true_k[i])));
           }
           if (verbose || o.n != o.n_hat) {
 #pragma omp critical
@@ -172,16 +181,17 @@ int main(int argc, char** argv) {
     std::printf("%zu records (%d valid), seed %llu: wall %.1f s; simulation %.0f ms per record\n", records, valid,
                 static_cast<unsigned long long>(seed), omp_get_wtime() - start, valid ? 1e3 * simulate / valid : 0.0);
     report("all", outcomes, 0, 1000);
-    int blamed[3] = {0, 0, 0}, wrong_blamed[3] = {0, 0, 0};
+    int blamed[4] = {0, 0, 0, 0}, wrong_blamed[4] = {0, 0, 0, 0};
     for (const Outcome& o : outcomes) {
       if (!o.valid) continue;
       const auto b = static_cast<std::size_t>(blame(o, setup.grid.samples));
       ++blamed[b];
       if (o.n != o.n_hat) ++wrong_blamed[b];
     }
-    std::printf("oracle (the truth refined, misfit > %.1f: the model fails; else better than the search's fit of its n, or the count "
-                "wrong: the search fails): model fails %d (wrong counts %d), search fails %d (wrong counts %d), neither %d\n",
-                MODEL_FAILS_MISFIT, blamed[2], wrong_blamed[2], blamed[1], wrong_blamed[1], blamed[0]);
+    std::printf("oracle (the truth refined, misfit > %.1f: the model fails; else better than the search's fit of its n: the search "
+                "fails; else a wrong count: the count's rule fails): model fails %d (wrong counts %d), search fails %d (wrong counts %d), "
+                "count's rule fails %d, neither %d\n",
+                MODEL_FAILS_MISFIT, blamed[3], wrong_blamed[3], blamed[1], wrong_blamed[1], blamed[2], blamed[0]);
     report("n 0", outcomes, 0, 0);
     report("n 1-4", outcomes, 1, 4);
     report("n 5-8", outcomes, 5, 8);
