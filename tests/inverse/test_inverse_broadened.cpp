@@ -27,6 +27,7 @@
 #include "support/cli_runner.hpp"
 #include "support/held_out_coverage.hpp"
 #include "support/inverse_device.hpp"
+#include "support/must_show_record.hpp"
 
 namespace stengmc {
 namespace {
@@ -88,16 +89,10 @@ void expect_loads_record_counted(const std::vector<std::pair<double, double>>& k
 }
 
 TEST(InverseBroadened, FourAsperitiesOfUnequalLoadsAndOnsets) {
-  // The must-show record: 100 us at 100 MHz, a prior of loads spread by a CV of
-  // 0.2-0.6 and onsets within 20 us; four asperities whose loads lie 0.6-1.5 x the device's
-  // and whose onsets are 0-12.5 us, their lines 0.87-2.25 MHz apart by ~25 line widths.
-  const Study study = parse_study(known_device_study("100e-6", "count = [0, 8]\nload_cv = [0.2, 0.6]\nonset_s = [0, 20e-6]\n"),
-                                  "unequal.toml", std::nullopt);
-  const InverseSetup setup = inverse_setup(study);
+  // The must-show record (support/must_show_record.hpp).
+  const InverseSetup setup = inverse_setup(testing::unequal_loads_and_onsets_study());
   const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const double n0 = setup.device.asperity.normal_load_n;
-  const std::vector<SimulatedAsperity> truth = {
-      {30.0, 0.6 * n0, 3.1e-6}, {60.0, 1.5 * n0, 0.0}, {110.0, 0.8 * n0, 12.5e-6}, {200.0, 1.2 * n0, 7.3e-6}};
+  const std::vector<SimulatedAsperity> truth = testing::four_unequal_loads_and_onsets(setup.device.asperity.normal_load_n);
   // 40 dB: the prior's highest SNR.
   expect_count_and_stiffnesses(invert_simulated(setup, *library, truth, 40.0, 3), truth);
 }

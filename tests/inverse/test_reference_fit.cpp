@@ -12,12 +12,10 @@
 #include "inverse/record_estimator.hpp"
 #include "inverse/simulated_record.hpp"
 #include "pipeline/study.hpp"
-#include "support/inverse_device.hpp"
+#include "support/must_show_record.hpp"
 
 namespace stengmc {
 namespace {
-
-using testing::known_device_study;
 
 TEST(ReferenceFit, TheTruthRefinedFitsToTheNoiseWhereTheSearchFoundItAndChangesNoAnswer) {
   // Four asperities of unequal loads and onsets (the must-show record), white noise.
@@ -28,13 +26,9 @@ TEST(ReferenceFit, TheTruthRefinedFitsToTheNoiseWhereTheSearchFoundItAndChangesN
   // below only if it misjudged the noise. The search finds these four (test_inverse_broadened),
   // so its fit of n = 4 is the same optimum: within 1 in chi^2 (the loads' prior term with it),
   // the harness's own line between "the search fails" and not.
-  const Study study = parse_study(known_device_study("100e-6", "count = [0, 8]\nload_cv = [0.2, 0.6]\nonset_s = [0, 20e-6]\n"),
-                                  "unequal.toml", std::nullopt);
-  const InverseSetup setup = inverse_setup(study);
+  const InverseSetup setup = inverse_setup(testing::unequal_loads_and_onsets_study());
   const std::unique_ptr<AtomLibrary> library = build_atom_library(setup);
-  const double n0 = setup.device.asperity.normal_load_n;
-  const std::vector<SimulatedAsperity> truth = {
-      {30.0, 0.6 * n0, 3.1e-6}, {60.0, 1.5 * n0, 0.0}, {110.0, 0.8 * n0, 12.5e-6}, {200.0, 1.2 * n0, 7.3e-6}};
+  const std::vector<SimulatedAsperity> truth = testing::four_unequal_loads_and_onsets(setup.device.asperity.normal_load_n);
   std::vector<double> record = simulate_record(setup.device, truth, setup.grid);
   double mean = 0.0, power = 0.0;
   for (double v : record) mean += v / static_cast<double>(record.size());
