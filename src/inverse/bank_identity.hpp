@@ -23,7 +23,9 @@ namespace stengmc {
 //! allows (residual_segments.hpp), not only its chi^2.
 //! 6: re-seating also crosses close atoms' onsets and loads with their k's free, and merges
 //! close atoms to free one for a missing line (LineSearch::cross, LineSearch::merge).
-inline constexpr int ESTIMATOR_VERSION = 6;
+//! 7: re-seating first solves every atom's tail jointly for its breakaway (LineSearch::tail_solve)
+//! and trades onsets within clusters with the breakaways held (LineSearch::trade_onsets).
+inline constexpr int ESTIMATOR_VERSION = 7;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <optional>
 
+#include <Eigen/Dense>
+
 #include "core/constants.hpp"
 #include "core/error.hpp"
 #include "spectral/amplitude_spectrum.hpp"
@@ -38,6 +40,16 @@ constexpr double NARROW_SPLIT_WIDTHS = 0.125;
 // many line widths; merges try the closest MERGES_TRIED of them.
 constexpr double MERGE_WIDTHS = 1.0;
 constexpr std::size_t MERGES_TRIED = 3;
+// The tail solve (LineSearch::tail_solve) reads the record this far past the latest breakaway
+// the prior allows: the head's 30 rad (atom_shapes.hpp, psi_post) [rad].
+constexpr double TAIL_SOLVE_HEAD_RAD = 30.0;
+// Atoms whose onsets lie this close trade them (LineSearch::trade_onsets): the neighbourhood's
+// time, within which plateaus and first cycles overlap.
+constexpr double TRADE_WINDOW_S = NEIGHBOURHOOD_TIME_S;
+// Each trading atom's breakaway is kept to within this many of its periods.
+constexpr int TRADE_PERIODS = 1;
+// ... and trades only with atoms whose onsets are more than this many periods apart.
+constexpr double TRADE_MIN_PERIODS = 0.1;
 
 double dot(std::span<const double> x, std::span<const double> y) {
   double s = 0.0;
@@ -65,6 +77,16 @@ std::vector<PlacedPair> screen_pairs(const std::vector<std::vector<LineProposals
   return out;
 }
 }  // namespace
+
+std::vector<double> LineSearch::unit_voltage(const AtomParameters& atom, double damping_rate_per_s) const {
+  const std::size_t samples = fit_->record().size();
+  AtomSums sums;
+  sums.reset(samples);
+  fit_->model().add(atom, damping_rate_per_s, sums);
+  std::vector<double> g(samples);
+  fit_->model().unit_voltage(sums, g);
+  return g;
+}
 
 LineSearch::LineSearch(RecordFit& fit, LineProposals& proposals, const LineSearchOptions& options, NoiseJudge judge)
     : fit_(&fit), proposals_(&proposals), options_(options), judge_(std::move(judge)) {}
@@ -205,6 +227,7 @@ bool LineSearch::put_back(OrderFit& fit, const FitState& without, const AtomPara
 void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
   for (std::size_t sweep = 0; sweep < sweeps; ++sweep) {
     bool improved = false;
+    if (sweep == 0 && tail_solve(fit)) improved = true;
     for (std::size_t i = 0; i < fit.state.atoms.size(); ++i) {
       if (fits_noise(fit)) return;
       FitState without = fit.state;
@@ -223,6 +246,7 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
     if (fit.residual_v2 < before) improved = true;
     if (!fits_noise(fit) && exchange(fit)) improved = true;
     if (!fits_noise(fit) && cross(fit)) improved = true;
+    if (!fits_noise(fit) && trade_onsets(fit)) improved = true;
     if (!fits_noise(fit) && merge(fit)) improved = true;
     if (!improved) return;
   }
@@ -231,24 +255,15 @@ void LineSearch::reseat(OrderFit& fit, std::size_t sweeps) {
 bool LineSearch::exchange(OrderFit& fit) {
   const FitLayout& layout = fit_->layout();
   if (!layout.onset_free && !layout.load_per_atom) return false;
-  const RecordModel& record_model = fit_->model();
   const std::size_t samples = fit_->record().size();
   const std::size_t n = fit.state.atoms.size();
-  auto unit = [&](const AtomParameters& atom, double d) {
-    AtomSums sums;
-    sums.reset(samples);
-    record_model.add(atom, d, sums);
-    std::vector<double> g(samples);
-    record_model.unit_voltage(sums, g);
-    return g;
-  };
   bool kept = false;
   for (std::size_t round = 0; round < n && !fits_noise(fit); ++round) {
     FitState state = fit.state;
     const std::vector<double> r = fit_->residual(state);
     const double a = state.amplitude, d = state.damping_rate_per_s;
     std::vector<std::vector<double>> g(n);
-    for (std::size_t i = 0; i < n; ++i) g[i] = unit(state.atoms[i], d);
+    for (std::size_t i = 0; i < n; ++i) g[i] = unit_voltage(state.atoms[i], d);
     const double rss = dot(r, r);
     struct Exchange {
       std::size_t i, j;
@@ -379,6 +394,178 @@ bool LineSearch::merge(OrderFit& fit) {
     }
   }
   return false;
+}
+
+bool LineSearch::tail_solve(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  const std::size_t n = fit.state.atoms.size();
+  if (!layout.onset_free || n < 2 || fits_noise(fit)) return false;
+  const RecordModel& record_model = fit_->model();
+  const AtomModel& model = record_model.atoms().model();
+  const double d = fit.state.damping_rate_per_s, mass = model.device().asperity.mass_kg;
+  const std::size_t samples = fit_->record().size();
+  const RecordGrid& grid = record_model.atoms().grid();
+  // The tail window: past every head any placement the prior allows could have.
+  double window_s = 0.0;
+  for (const AtomParameters& a : fit.state.atoms) {
+    AtomParameters latest = a;
+    latest.onset_s = layout.onset_max_s;
+    if (layout.load_per_atom) latest.load_n = layout.nominal_load_n * std::exp(layout.max_log_load);
+    window_s = std::max(window_s, model.breakaway_time(latest, d) + TAIL_SOLVE_HEAD_RAD / std::sqrt(a.stiffness_n_per_m / mass));
+  }
+  // (A capture may start after the belt did: its first sample is at grid.start_s.)
+  const std::size_t first = static_cast<std::size_t>(std::ceil(std::max(0.0, window_s - grid.start_s) / grid.step_s));
+  if (first + 4 * n >= samples) return false;
+  const std::size_t m = samples - first;
+  auto unit = [&](const AtomParameters& atom) { return unit_voltage(atom, d); };
+  // The quadrature pair of each atom's tail: its voltage and the voltage of the same atom a
+  // quarter period later (the envelope's change over a quarter period is ~d T / 4, 0.1 %).
+  Eigen::MatrixXd basis(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(2 * n));
+  std::vector<double> periods(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const AtomParameters& a = fit.state.atoms[i];
+    periods[i] = 2.0 * PI / model.tail_angular_frequency(a, d);
+    AtomParameters later = a;
+    later.onset_s += 0.25 * periods[i];
+    const std::vector<double> g0 = unit(a), g1 = unit(later);
+    for (std::size_t k = 0; k < m; ++k) basis(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(2 * i)) = g0[first + k],
+                                        basis(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(2 * i + 1)) = g1[first + k];
+  }
+  Eigen::VectorXd y(static_cast<Eigen::Index>(m));
+  for (std::size_t k = 0; k < m; ++k)
+    y(static_cast<Eigen::Index>(k)) = (fit_->record()[first + k] - fit.state.offset_v) / fit.state.amplitude;
+  const Eigen::VectorXd c = basis.colPivHouseholderQr().solve(y);
+  FitState trial = fit.state;
+  for (std::size_t i = 0; i < n; ++i) {
+    const AtomParameters& a = fit.state.atoms[i];
+    const Eigen::VectorXd share = basis.col(static_cast<Eigen::Index>(2 * i)) * c(static_cast<Eigen::Index>(2 * i)) +
+                                  basis.col(static_cast<Eigen::Index>(2 * i + 1)) * c(static_cast<Eigen::Index>(2 * i + 1));
+    // Its breakaway shift from the share's amplitude (the envelope ~ e^{-d t}), then the phase
+    // on a grid a 24th of a period fine within a period and a half of it.
+    const double ratio = share.norm() / basis.col(static_cast<Eigen::Index>(2 * i)).norm();
+    if (!(ratio > 0.0)) continue;
+    const double coarse = std::log(ratio) / d;
+    double best_error = INFINITY, best_onset = a.onset_s;
+    for (int j = -36; j <= 36; ++j) {
+      AtomParameters moved = a;
+      moved.onset_s = a.onset_s + coarse + periods[i] * j / 24.0;
+      if (moved.onset_s < layout.onset_min_s || moved.onset_s > layout.onset_max_s) continue;
+      const std::vector<double> g = unit(moved);
+      double error = 0.0;
+      for (std::size_t k = 0; k < m; ++k) error += (share(static_cast<Eigen::Index>(k)) - g[first + k]) * (share(static_cast<Eigen::Index>(k)) - g[first + k]);
+      if (error < best_error) best_error = error, best_onset = moved.onset_s;
+    }
+    trial.atoms[i].onset_s = best_onset;
+  }
+  OrderFit solved = fit_->refine(std::move(trial), {}, false, false, options_.max_iterations);
+  for (std::size_t sweep = 0; sweep < options_.reseat_sweeps; ++sweep) {
+    const double before = solved.residual_v2;
+    replace(solved);
+    if (!(solved.residual_v2 < before)) break;
+  }
+  if (std::getenv("STENGMC_DEBUG_SEARCH")) {
+    std::fprintf(stderr, "tail solve n %zu (window from %.2f us): rss %.4g -> %.4g\n", n, 1e6 * window_s, fit.residual_v2, solved.residual_v2);
+    for (const AtomParameters& x : solved.state.atoms)
+      std::fprintf(stderr, "    k %.3f N %.3g on %.3f\n", x.stiffness_n_per_m, x.load_n, 1e6 * x.onset_s);
+  }
+  if (!(solved.residual_v2 < fit.residual_v2)) return false;
+  fit = std::move(solved);
+  return true;
+}
+
+bool LineSearch::trade_onsets(OrderFit& fit) {
+  const FitLayout& layout = fit_->layout();
+  if (!layout.onset_free || !layout.load_per_atom) return false;
+  const AtomModel& model = fit_->model().atoms().model();
+  const double d = fit.state.damping_rate_per_s;
+  const double log_lo = std::log(layout.nominal_load_n) + layout.min_log_load, log_hi = std::log(layout.nominal_load_n) + layout.max_log_load;
+  // `atom` at `onset_s`, its load set so that it breaks away at `breakaway_s`; false where no
+  // load within the prior's bounds does (the breakaway grows with the load).
+  auto move_keeping_breakaway = [&](AtomParameters& atom, double onset_s, double breakaway_s) {
+    AtomParameters x = atom;
+    x.onset_s = onset_s;
+    double lo = log_lo, hi = log_hi;
+    x.load_n = std::exp(lo);
+    if (model.breakaway_time(x, d) > breakaway_s) return false;
+    x.load_n = std::exp(hi);
+    if (model.breakaway_time(x, d) < breakaway_s) return false;
+    for (int it = 0; it < 50; ++it) {
+      x.load_n = std::exp(0.5 * (lo + hi));
+      (model.breakaway_time(x, d) < breakaway_s ? lo : hi) = 0.5 * (lo + hi);
+    }
+    x.load_n = std::exp(0.5 * (lo + hi));
+    atom = x;
+    return true;
+  };
+  const std::size_t samples = fit_->record().size();
+  auto unit = [&](const AtomParameters& atom) { return unit_voltage(atom, d); };
+  // Tries the cycle of onsets over `members` (each takes the next one's), each member's
+  // breakaway kept to within a whole number of its periods (the tail's phase pins it only so):
+  // every such choice screened on the raw residual with the members taken out, the best
+  // refitted with them and kept where it lowers the misfit.
+  auto try_cycle = [&](const std::vector<std::size_t>& members) {
+    const double a = fit.state.amplitude;
+    FitState current = fit.state;
+    std::vector<double> q = fit_->residual(current);  // (its linear parameters as the fit's)
+    for (std::size_t i : members) {
+      const std::vector<double> g = unit(fit.state.atoms[i]);
+      for (std::size_t k = 0; k < samples; ++k) q[k] += a * g[k];
+    }
+    // The best choice is refitted whatever its screened misfit: unrefined, a trade that is right
+    // can still score below the local optimum it leaves.
+    double best_rss = INFINITY;
+    std::optional<FitState> best;
+    const std::size_t choices = static_cast<std::size_t>(std::pow(2 * TRADE_PERIODS + 1, members.size()));
+    for (std::size_t choice = 0; choice < choices; ++choice) {
+      FitState trial = fit.state;
+      std::vector<double> rest = q;
+      bool valid = true;
+      std::size_t code = choice;
+      for (std::size_t c = 0; c < members.size() && valid; ++c) {
+        const int j = static_cast<int>(code % (2 * TRADE_PERIODS + 1)) - TRADE_PERIODS;
+        code /= 2 * TRADE_PERIODS + 1;
+        const AtomParameters& own = fit.state.atoms[members[c]];
+        const double period = 2.0 * PI / model.tail_angular_frequency(own, d);
+        const double onset = fit.state.atoms[members[(c + 1) % members.size()]].onset_s;
+        valid = move_keeping_breakaway(trial.atoms[members[c]], onset, model.breakaway_time(own, d) + j * period);
+        if (!valid) break;
+        const std::vector<double> g = unit(trial.atoms[members[c]]);
+        for (std::size_t k = 0; k < samples; ++k) rest[k] -= a * g[k];
+      }
+      if (!valid) continue;
+      const double rss = dot(rest, rest);
+      if (rss < best_rss) best_rss = rss, best = std::move(trial);
+    }
+    if (!best) return false;
+    std::vector<bool> active(best->atoms.size(), false);
+    for (std::size_t i : members) active[i] = true;
+    OrderFit refitted = fit_->refine(std::move(*best), active, false, false, options_.max_iterations);
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "trade onsets of %zu atoms (first k %.3f): rss %.4g -> %.4g\n", members.size(),
+                   fit.state.atoms[members[0]].stiffness_n_per_m, fit.residual_v2, refitted.residual_v2);
+    if (!(refitted.residual_v2 < fit.residual_v2)) return false;
+    fit = std::move(refitted);
+    return true;
+  };
+  bool kept = false;
+  const std::size_t n = fit.state.atoms.size();
+  // Close enough to trade, and apart enough that the trade moves something (atoms that share an
+  // onset, as every atom of a record whose contact starts at once does, have nothing to trade:
+  // trying their pairs and triples made a record of 15 such atoms at 1 m/s take 980 s).
+  auto near = [&](std::size_t i, std::size_t j) {
+    const AtomParameters &x = fit.state.atoms[i], &y = fit.state.atoms[j];
+    const double apart = std::abs(x.onset_s - y.onset_s);
+    const double shorter = 2.0 * PI / std::max(model.tail_angular_frequency(x, d), model.tail_angular_frequency(y, d));
+    return apart < TRADE_WINDOW_S && apart > TRADE_MIN_PERIODS * shorter;
+  };
+  for (std::size_t i = 0; i < n && !fits_noise(fit); ++i)
+    for (std::size_t j = i + 1; j < n && !fits_noise(fit); ++j) {
+      if (!near(i, j)) continue;
+      if (try_cycle({i, j})) kept = true;
+      for (std::size_t k = j + 1; k < n && !fits_noise(fit); ++k)
+        if (near(i, k) && near(j, k) && (try_cycle({i, j, k}) || try_cycle({i, k, j}))) kept = true;
+    }
+  return kept;
 }
 
 void LineSearch::replace(OrderFit& fit) {

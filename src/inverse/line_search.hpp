@@ -62,6 +62,8 @@ class LineSearch {
   [[nodiscard]] bool fits_noise(const OrderFit& fit) const { return judge_.fits(*fit_, fit); }
   //! The best addition to `fit`, refined in ln k by golden section on its exact score.
   LineCandidate best_addition(const OrderFit& fit);
+  //! The voltage of `atom` alone at unit amplitude (the record model of it alone).
+  [[nodiscard]] std::vector<double> unit_voltage(const AtomParameters& atom, double damping_rate_per_s) const;
   //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.
   std::vector<bool> neighbours(const FitState& state) const;
   //! Re-seats each atom in turn: removed, the best proposal on what it leaves, refitted with
@@ -89,6 +91,21 @@ class LineSearch {
   //! load whose breakaway comes a period late, an onset on another's plateau). Kept where the
   //! refit with its neighbours lowers the misfit.
   void replace(OrderFit& fit);
+  //! Every atom's breakaway read off the record's tail, all lines at once: past the last head
+  //! the record is a sum of free oscillations at the atoms' known frequencies, linear in each
+  //! one's quadrature pair, so a joint least-squares solve separates lines whose tails overlap
+  //! (the greedy path and the placements above score one atom at a time, against every other
+  //! asperity's tail). Each atom's onset is moved so its tail matches its share; all refitted,
+  //! placements chosen again (replace). Kept where that lowers the misfit.
+  bool tail_solve(OrderFit& fit);
+  //! Atoms whose onsets lie within TRADE_WINDOW_S of each other trade onsets, two or three at
+  //! a time, each keeping its breakaway (its load set again so that it breaks away where it
+  //! did): the tail pins each breakaway, but an onset and a load trade against each other along
+  //! it (t_b = t_on + tau(N, k)), so a greedy path can give a cluster of asperities each
+  //! other's onsets, their loads bent to keep their tails, which no move of one atom or of one
+  //! atom's onset alone undoes. Only the heads change; each trade is refitted with its atoms
+  //! and kept where the misfit falls. Returns whether one was kept.
+  bool trade_onsets(OrderFit& fit);
   //! Two atoms within a line width of each other exchange onsets and loads and are refitted,
   //! their k's free: close lines' k's must cross for their onsets to trade places, which
   //! exchange's screening (k held) scores as a loss. Kept where the misfit falls.

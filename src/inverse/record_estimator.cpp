@@ -201,10 +201,10 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
     constexpr std::size_t REFERENCE_ITERATIONS = 300;
     const double scale = sigma * sigma * static_cast<double>(samples);
     const std::size_t n = reference->atoms.size();
-    const OrderFit start = fit.refine(*reference, {}, true, false, 0);
+    const OrderFit unrefined = fit.refine(*reference, {}, true, false, 0);
     const OrderFit refined = fit.refine(*reference, {}, true, false, REFERENCE_ITERATIONS);
     ReferenceFit& r = out.reference.emplace();
-    r.start_misfit = start.residual_v2 / scale;
+    r.start_misfit = unrefined.residual_v2 / scale;
     r.misfit = refined.residual_v2 / scale;
     r.penalty = refined.penalty;
     r.iterations = refined.iterations;
