@@ -98,9 +98,10 @@ class LineSearch {
   //! asperity's tail). Each atom's onset is moved so its tail matches its share; all refitted,
   //! placements chosen again (replace). Kept where that lowers the misfit.
   bool tail_solve(OrderFit& fit);
-  //! Atoms whose onsets lie within TRADE_WINDOW_S of each other trade onsets, two or three at
-  //! a time, each keeping its breakaway (its load set again so that it breaks away where it
-  //! did): the tail pins each breakaway, but an onset and a load trade against each other along
+  //! Atoms whose onsets lie within TRADE_WINDOW_S of each other (and more than a tenth of a
+  //! period apart) trade onsets, two or three at a time, each keeping its breakaway to within a
+  //! whole period (its load set again so that it breaks away there; the tail's phase pins the
+  //! breakaway only so): the tail pins each breakaway, but an onset and a load trade against each other along
   //! it (t_b = t_on + tau(N, k)), so a greedy path can give a cluster of asperities each
   //! other's onsets, their loads bent to keep their tails, which no move of one atom or of one
   //! atom's onset alone undoes. Only the heads change; each trade is refitted with its atoms
