@@ -27,7 +27,9 @@
 # is what two cores can afford in a working session (a broadened record costs ~9 s);
 # FAMILY_SIZE, signals per held-out family [100, the family studies' realisations]: the first
 # FAMILY_SIZE realisations of each family (the same records as in the full family), in
-# results/inverse/families<FAMILY_SIZE>/; STENGMC_BIN, the binary [build/src/stengmc]: pin a copy when the build may change under a
+# results/inverse/families<FAMILY_SIZE>/; FAMILIES (raw part only), the families to invert [all
+# eight: ideal loads onset tolerance noise vb1 all pure_noise]: the cheap ones (ideal, tolerance,
+# noise, pure_noise: ~1.5 s a record) can be run at full size apart from the hard ones (~25 s); STENGMC_BIN, the binary [build/src/stengmc]: pin a copy when the build may change under a
 # run of hours; OUT, the output folder [results/inverse].
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -70,7 +72,8 @@ if [[ $part == raw ]]; then
   families=$out/families${FAMILY_SIZE:-}
   mkdir -p "$families"
   args=()
-  for family in ideal loads onset tolerance noise vb1 all pure_noise; do
+  for family in ${FAMILIES:-ideal loads onset tolerance noise vb1 all pure_noise}; do
+    [[ -f studies/inverse/validation/$family.toml ]] || { echo "FAMILIES: no family '$family' (studies/inverse/validation/$family.toml)" >&2; exit 2; }
     vb=10; [[ $family == vb1 || $family == all ]] && vb=1
     family_signals "$family" "$families"
     raw=$families/raw_$family.h5
