@@ -22,6 +22,7 @@
 #include "inverse/tracking.hpp"
 #include "pipeline/run_study.hpp"
 #include "pipeline/study.hpp"
+#include "support/simulated_device_record.hpp"
 #include "support/table1_study.hpp"
 
 namespace stengmc {
@@ -41,32 +42,8 @@ std::string excited(double eps = 0.01) {
   return "[counterface]\nfriction_modulation_rms = " + std::to_string(eps) + "\ncorrelation_length_m = 0.5e-6\n";
 }
 
-struct Simulated {
-  KnownDevice device;
-  RecordGrid grid;
-  std::vector<double> voltage;
-  double noise_sigma_v = 0.0;  //!< the white noise added
-};
-
-//! The study run, plus white noise of SNR `snr_db` over the mean-removed clean voltage (drawn
-//! here, seeded: the test is the same every run).
-Simulated simulate(const std::string& text, double snr_db = 25.0, unsigned seed = 3) {
-  const Study study = parse_study(text, "track_test.toml");
-  RunOptions options;
-  options.show_progress = false;
-  options.keep_traces = false;
-  const RunResult run = run_study(study, options);
-  Simulated s{known_device_from_study(study), {run.times_s.front(), run.times_s[1] - run.times_s[0], run.times_s.size()},
-              run.circuit.voltage_v};
-  double mean = 0.0, power = 0.0;
-  for (double v : s.voltage) mean += v / static_cast<double>(s.voltage.size());
-  for (double v : s.voltage) power += (v - mean) * (v - mean) / static_cast<double>(s.voltage.size());
-  std::mt19937_64 rng(seed);
-  s.noise_sigma_v = std::sqrt(power / std::pow(10.0, snr_db / 10.0));
-  std::normal_distribution<double> normal(0.0, s.noise_sigma_v);
-  for (double& v : s.voltage) v += normal(rng);
-  return s;
-}
+using testing::simulate;
+using testing::Simulated;
 
 //! The band of the test's prior: k in [20, 160] N/m (docs/tracking.md: the device's plausible lines).
 std::pair<double, double> band(const KnownDevice& d) { return {frequency_at(d, 20.0), frequency_at(d, 160.0)}; }
