@@ -101,6 +101,7 @@ py::dict to_dict(const Inversion& inv, const std::string& bank_path) {
   record["signal_to_noise_db"] = e.signal_to_noise_db;
   record["band_power_ratio"] = e.in_band_power_ratio;
   record["lines_outside_prior"] = e.lines_outside_prior;
+  record["onset_steps"] = e.onset_steps;
   record["seconds"] = e.seconds;
 
   py::dict out;

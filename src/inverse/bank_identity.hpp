@@ -25,7 +25,10 @@ namespace stengmc {
 //! close atoms to free one for a missing line (LineSearch::cross, LineSearch::merge).
 //! 7: re-seating first solves every atom's tail jointly for its breakaway (LineSearch::tail_solve)
 //! and trades onsets within clusters with the breakaways held (LineSearch::trade_onsets).
-inline constexpr int ESTIMATOR_VERSION = 7;
+//! 8: contact onsets read off the record as steps (onset_steps.hpp) are tried as every atom's
+//! placement, and a start with one atom at each is searched beside the greedy path
+//! (LineSearch::place_at_steps).
+inline constexpr int ESTIMATOR_VERSION = 8;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()

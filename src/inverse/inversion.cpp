@@ -169,6 +169,14 @@ Inversion Inverter::invert(const std::string& name, std::span<const double> volt
   }
   out.verdict.push_back("Signal-to-noise " + number(e.signal_to_noise_db, "%.1f") + " dB" +
                         (e.signal_to_noise_db < 25.0 ? ": noise widens every interval" : ": noise is not what limits") + ".");
+  if (e.onset_steps > 0) {
+    // The onsets the record shows as steps (inverse/onset_steps.hpp): one asperity each, so a
+    // count below them contradicts the record; above them, the others were in contact from its start.
+    std::string steps = std::to_string(e.onset_steps) + " contact onset(s) show as steps of R sigma w v_b in the record";
+    if (out.calibrated.count < e.onset_steps)
+      steps += ", more than the " + std::to_string(out.calibrated.count) + " asperities counted: the count is likely low";
+    out.verdict.push_back(steps + ".");
+  }
   if (c.misfit > (maps_ ? maps_->misfit_ratio : DEFAULT_MISFIT_RATIO)) out.verdict.push_back(residual_pointer(e));
   if (atoms_->check_error() > 1e-2)
     out.verdict.push_back("The atoms match the forward model to " + percent(atoms_->check_error()) +

@@ -31,6 +31,8 @@ std::size_t smooth_length(std::size_t n) {
 // them are scored exactly.
 constexpr std::size_t FREQUENCIES = 8;
 constexpr std::size_t EXACT = 8;
+// Placements at onset steps `propose` returns beside its best (LineProposals::set_step_onsets).
+constexpr std::size_t STEP_PROPOSALS = 2;
 // Loads tried per frequency when each atom has its own (log-spaced over the prior's).
 constexpr std::size_t LOAD_GRID = 12;
 // Two placements of one atom whose loads differ by less than this in ln N (and onsets by less
@@ -277,7 +279,7 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
   } else {
     load_residual(q);
   }
-  std::vector<Rough> rough;
+  std::vector<Rough> rough, stepped;
   std::vector<std::complex<double>> matched;
   for (std::size_t peak : peaks) {
     const double omega_bin = bin_rad_per_s * static_cast<double>(first_bin_ + peak);
@@ -295,6 +297,7 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
       matched_filter(omega, matched);
     }
     add_placements(nominal, q, matched, rough);
+    for (Rough& c : step_placements(nominal, q, matched)) stepped.push_back(std::move(c));
   }
   // The best distinct ones, best first: neighbours on the grid (a breakaway a few samples on, a
   // load a grid step away) are the same atom to the LM that follows. A heap, not a sort: there
@@ -315,8 +318,22 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
     kept.push_back(a);
     out.push_back(score(a, r, amplitude, d));
   }
+  // Each step onset with its best frequency and load, scored exactly beside them: a step fixes
+  // an onset to a sample, which the rough score, dominated by the tail, reads a period off.
+  std::stable_sort(stepped.begin(), stepped.end(), [](const Rough& x, const Rough& y) { return x.score > y.score; });
+  std::vector<double> onsets_scored;
+  std::vector<LineCandidate> at_steps;
+  for (const Rough& c : stepped) {
+    if (std::find(onsets_scored.begin(), onsets_scored.end(), c.atom.onset_s) != onsets_scored.end()) continue;
+    onsets_scored.push_back(c.atom.onset_s);
+    at_steps.push_back(score(c.atom, r, amplitude, d));
+    at_steps.back().at_step = true;
+  }
   std::sort(out.begin(), out.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
+  std::sort(at_steps.begin(), at_steps.end(), [](const LineCandidate& x, const LineCandidate& y) { return x.score_v2 > y.score_v2; });
   if (out.size() > count) out.resize(count);
+  if (at_steps.size() > STEP_PROPOSALS) at_steps.resize(STEP_PROPOSALS);
+  out.insert(out.end(), at_steps.begin(), at_steps.end());
   return out;
 }
 
@@ -403,6 +420,32 @@ void LineProposals::add_placements(const AtomParameters& nominal, const Residual
   }
 }
 
+std::vector<LineProposals::Rough> LineProposals::step_placements(const AtomParameters& nominal, const Residual& q,
+                                                                 std::span<const std::complex<double>> matched) const {
+  std::vector<Rough> out;
+  if (!layout_.onset_free || step_onsets_s_.empty()) return out;
+  const AtomLibrary& lib = model_->atoms();
+  const double omega0 = std::sqrt(nominal.stiffness_n_per_m / lib.device().asperity.mass_kg);
+  std::vector<double> loads;
+  if (layout_.load_per_atom) loads = loads_grid_;
+  else loads.push_back(nominal.load_n);
+  std::vector<Rough> per_load;
+  for (double onset : step_onsets_s_) {
+    if (onset < layout_.onset_min_s || onset > layout_.onset_max_s) continue;
+    per_load.clear();
+    for (double load : loads) {
+      const AtomParameters atom{nominal.stiffness_n_per_m, load, onset};
+      const double pi = lib.model().carried_phase(atom);
+      const ShapeWeights w = lib.shapes().weights(pi, q.d / omega0);
+      add_rough(atom, pi, tail_start(w), index_of(onset + w.theta_b / omega0), q, matched, per_load);
+    }
+    if (!per_load.empty())
+      out.push_back(*std::max_element(per_load.begin(), per_load.end(), [](const Rough& x, const Rough& y) { return x.score < y.score; }));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Rough& x, const Rough& y) { return x.score > y.score; });
+  return out;
+}
+
 std::vector<LineCandidate> LineProposals::propose_placements(const AtomParameters& atom, std::span<const double> r, double amplitude,
                                                          double d, std::size_t count) {
   Residual q{r, {}, amplitude, d};
@@ -448,10 +491,22 @@ std::vector<LineCandidate> LineProposals::placements(const AtomParameters& atom,
     thread_local std::vector<double> unused;
     out.push_back(score(c.atom, q.r, q.amplitude, q.d, units ? g.emplace_back() : unused));
   }
+  // Each step onset with its best load, scored exactly too (LineProposals::propose), unless one
+  // of those already is that placement; the best `count` of all are kept.
+  for (const Rough& c : step_placements(atom, q, matched)) {
+    const bool close = std::any_of(out.begin(), out.end(), [&](const LineCandidate& o) {
+      return std::abs(o.atom.onset_s - c.atom.onset_s) < 0.5 * model_->atoms().grid().step_s &&
+             std::abs(std::log(o.atom.load_n / c.atom.load_n)) < PLACEMENT_LOG_LOAD;
+    });
+    if (close) continue;
+    thread_local std::vector<double> unused;
+    out.push_back(score(c.atom, q.r, q.amplitude, q.d, units ? g.emplace_back() : unused));
+  }
   // Best first by exact score (the order std::sort gave them, kept for the units alongside).
   std::vector<std::size_t> order(out.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return out[x].score_v2 > out[y].score_v2; });
+  if (order.size() > count) order.resize(count);
   std::vector<LineCandidate> sorted;
   if (units) units->clear();
   for (std::size_t i : order) {

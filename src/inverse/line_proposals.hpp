@@ -30,6 +30,7 @@ struct LineCandidate {
   AtomParameters atom;
   double score_v2 = 0.0;   //!< exact decrease of the squared residual [V^2]
   double energy_v2 = 0.0;  //!< the atom's own energy a^2 |g|^2 [V^2]
+  bool at_step = false;    //!< placed at an onset step (LineProposals::set_step_onsets)
 };
 
 class LineProposals {
@@ -63,6 +64,15 @@ class LineProposals {
   std::vector<std::vector<Placement>> propose_placements_with_voltages(std::span<const AtomParameters> atoms,
                                                                        std::span<const double> residual, double amplitude,
                                                                        double damping_rate, std::size_t count);
+
+  //! Contact onsets the record shows as steps (inverse/onset_steps.hpp) [s]: where the layout
+  //! frees onsets, every proposal and placement also scores exactly, for each of them, the
+  //! atom starting there with its best load, beside the matched filter's best (empty: none).
+  //! `propose` returns the best STEP_PROPOSALS of those after its `count` (marked at_step) even
+  //! where they score lower: their stiffness is the map's, on a grid a tenth of a line width
+  //! wide, which over a 100 us record turns the tail by a fifth of a period, so a placement at
+  //! the right onset scores below one a period off until its k is refined.
+  void set_step_onsets(std::vector<double> onsets_s) { step_onsets_s_ = std::move(onsets_s); }
 
   //! The exact score 2 a <r, g> - a^2 |g|^2 of one atom, and its energy.
   LineCandidate score(const AtomParameters& atom, std::span<const double> residual, double amplitude, double damping_rate) const;
@@ -105,6 +115,10 @@ class LineProposals {
   //! Every load and onset the layout allows for an atom of `nominal`'s stiffness.
   void add_placements(const AtomParameters& nominal, const Residual& q, std::span<const std::complex<double>> matched,
                       std::vector<Rough>& rough) const;
+  //! For each step onset the layout allows, the atom of `nominal`'s stiffness starting there
+  //! with the load (of those the layout allows) of the best rough score, best first.
+  [[nodiscard]] std::vector<Rough> step_placements(const AtomParameters& nominal, const Residual& q,
+                                                   std::span<const std::complex<double>> matched) const;
   [[nodiscard]] std::size_t index_of(double t) const;
   const RecordModel* model_;
   FitLayout layout_;
@@ -116,6 +130,7 @@ class LineProposals {
   std::vector<double> starts_s_;        // tail starts T_s
   std::size_t first_bin_ = 0, last_bin_ = 0;
   std::vector<double> loads_grid_;      // candidate loads when each atom has its own [N]
+  std::vector<double> step_onsets_s_;   // onsets the record shows as steps [s]
   struct KernelTransform {
     double omega = 0.0;
     std::vector<std::complex<double>> transform;

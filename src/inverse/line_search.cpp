@@ -112,7 +112,7 @@ std::vector<bool> LineSearch::neighbours(const FitState& state) const {
   return active;
 }
 
-LineCandidate LineSearch::best_addition(const OrderFit& fit) {
+LineCandidate LineSearch::best_addition(const OrderFit& fit, bool steps_only) {
   FitState state = fit.state;
   const std::vector<double> r = fit_->residual(state);
   const std::vector<LineCandidate> candidates =
@@ -121,7 +121,10 @@ LineCandidate LineSearch::best_addition(const OrderFit& fit) {
   const double lo = std::log(lib.min_stiffness()), hi = std::log(lib.max_stiffness());
   const double d = state.damping_rate_per_s;
   LineCandidate best{{}, -INFINITY, 0.0};
-  for (std::size_t c = 0; c < candidates.size() && c < 2; ++c) {
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    // The best two, and those placed at onset steps (their k refined here first reaches their
+    // score); only the latter for a start from the steps.
+    if (steps_only ? !candidates[c].at_step : c >= 2 && !candidates[c].at_step) continue;
     // Golden-section search of the exact score in ln k over +-1 line width (the proposals'
     // frequency grid is a tenth of one), load and onset held.
     AtomParameters atom = candidates[c].atom;
@@ -149,7 +152,8 @@ LineCandidate LineSearch::best_addition(const OrderFit& fit) {
       }
     }
     const LineCandidate& refined = f1.score_v2 > f2.score_v2 ? f1 : f2;
-    const LineCandidate& chosen = refined.score_v2 > candidates[c].score_v2 ? refined : candidates[c];
+    LineCandidate chosen = refined.score_v2 > candidates[c].score_v2 ? refined : candidates[c];
+    chosen.at_step = candidates[c].at_step;
     if (chosen.score_v2 > best.score_v2) best = chosen;
   }
   return best;
@@ -677,6 +681,37 @@ std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
     }
   }
   return best;
+}
+
+OrderFit LineSearch::place_at_steps(const FitState& start, const std::vector<double>& onsets_s) {
+  FitState empty = start;
+  empty.atoms.clear();
+  OrderFit fit = fit_->refine(empty, {}, true, false, options_.max_iterations);
+  std::vector<double> left = onsets_s;
+  while (!left.empty()) {
+    proposals_->set_step_onsets(left);
+    LineCandidate best = best_addition(fit, true);
+    if (!best.at_step || best.energy_v2 <= 0.0) break;
+    // Where no line the map offers explains enough of what is left at any onset still free
+    // (the greedy path's own stop), the atoms placed so far have taken that asperity's share:
+    // forcing one in there placed it on no line (a library-wide scan of k found none either).
+    if (best.score_v2 < options_.stop_fraction * best.energy_v2) break;
+    // The onset taken (once: a step of two units stays for the second).
+    left.erase(std::min_element(left.begin(), left.end(),
+                                [&](double x, double y) { return std::abs(x - best.atom.onset_s) < std::abs(y - best.atom.onset_s); }));
+    FitState state = fit.state;
+    state.atoms.push_back(best.atom);
+    const std::vector<bool> active = neighbours(state);
+    fit = fit_->refine(std::move(state), active, false, false, options_.max_iterations);
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "at steps: n=%zu add k %.3f N %.3g on %.3f us -> rss %.4g\n", fit.state.atoms.size(),
+                   best.atom.stiffness_n_per_m, best.atom.load_n, 1e6 * best.atom.onset_s, fit.residual_v2);
+  }
+  // The proposals keep every step for the searches that follow.
+  std::vector<double> all = onsets_s;
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  proposals_->set_step_onsets(all);
+  return polish(std::move(fit.state));
 }
 
 OrderFit LineSearch::polish(FitState start) {

@@ -57,11 +57,19 @@ class LineSearch {
   //! greedy path's own orders are; and refitted in full again.
   OrderFit polish(FitState start);
 
+  //! A start from the record's onset steps (inverse/onset_steps.hpp; `onsets_s` once per
+  //! asperity, a step of two units twice): one atom per onset, added greedily as `search` adds
+  //! them but each at an onset not yet taken, its k the best the map and the golden section
+  //! find there, refitted with its neighbours; then polished. The greedy path's own atoms
+  //! start where the tail's phase and the plateau score best, which with a crowd of lines
+  //! unexplained is often a period off an onset; these start on them.
+  OrderFit place_at_steps(const FitState& start, const std::vector<double>& onsets_s);
+
  private:
   //! Whether `fit` explains the record to its noise (noise_judge.hpp).
   [[nodiscard]] bool fits_noise(const OrderFit& fit) const { return judge_.fits(*fit_, fit); }
   //! The best addition to `fit`, refined in ln k by golden section on its exact score.
-  LineCandidate best_addition(const OrderFit& fit);
+  LineCandidate best_addition(const OrderFit& fit, bool steps_only = false);
   //! The voltage of `atom` alone at unit amplitude (the record model of it alone).
   [[nodiscard]] std::vector<double> unit_voltage(const AtomParameters& atom, double damping_rate_per_s) const;
   //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.

@@ -42,6 +42,13 @@ NestedSearch::NestedSearch(const RecordModel& model, const InversePrior& prior, 
 
 NestedSearch::~NestedSearch() = default;
 
+void NestedSearch::set_step_onsets(const std::vector<double>& asperity_onsets_s) {
+  step_asperities_s_ = asperity_onsets_s;
+  std::vector<double> onsets = asperity_onsets_s;
+  onsets.erase(std::unique(onsets.begin(), onsets.end()), onsets.end());
+  for (const std::unique_ptr<Level>& level : levels_) level->proposals.set_step_onsets(onsets);
+}
+
 NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v, const FitLayout& layout,
                                std::size_t max_count, std::size_t min_count, const WhitenedLevel& whitened_level) {
   NestedFits out;
@@ -64,7 +71,18 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     LineSearch search(fit, level->proposals, options_, judge);
     FitState start;
     start.damping_rate_per_s = level->layout.nominal_damping_rate;
-    const std::vector<OrderFit> fits = search.search(start, max_count, min_count);
+    std::vector<OrderFit> fits = search.search(start, max_count, min_count);
+    if (level->layout.onset_free && !step_asperities_s_.empty() && step_asperities_s_.size() < max_count) {
+      // A start from the onset steps; it replaces its order's fit where better.
+      OrderFit seeded = search.place_at_steps(start, step_asperities_s_);
+      const std::size_t n = seeded.state.atoms.size();
+      if (std::getenv("STENGMC_DEBUG_SEARCH"))
+        std::fprintf(stderr, "nested start at %zu steps: order %zu chi2 / M %.4f (the search's %.4f)\n", step_asperities_s_.size(), n,
+                     seeded.residual_v2 / s2 / samples, n < fits.size() ? fits[n].residual_v2 / s2 / samples : -1.0);
+      if (n == fits.size()) fits.push_back(std::move(seeded));
+      else if (n < fits.size() && seeded.residual_v2 / s2 + seeded.penalty < fits[n].residual_v2 / s2 + fits[n].penalty)
+        fits[n] = std::move(seeded);
+    }
     // Only the orders refitted in full (they have their normal matrix), and of those the ones
     // within reach of the best (as LineSearch::refit judges hopeless): the others carry little
     // posterior weight, and a broadened refit of each would cost its time for nothing.

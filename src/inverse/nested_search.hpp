@@ -59,6 +59,10 @@ class NestedSearch {
 
   //! True when the prior has nested priors.
   [[nodiscard]] bool applies() const { return !levels_.empty(); }
+  //! The record's onset steps, once per asperity (a step of two units twice), for the levels
+  //! that free onsets: their proposals try them (LineProposals::set_step_onsets), and their
+  //! search gets a start from them (LineSearch::place_at_steps) beside its own path.
+  void set_step_onsets(const std::vector<double>& asperity_onsets_s);
 
   //! The nested models' fits of `voltage` (searched as white noise of level `sigma_v`),
   //! simplest first, as states of the broadened `layout` (a nested fit is a point of it).
@@ -70,6 +74,7 @@ class NestedSearch {
   struct Level;
   const RecordModel* model_;
   std::vector<std::unique_ptr<Level>> levels_;
+  std::vector<double> step_asperities_s_;
   LineSearchOptions options_;
 };
 

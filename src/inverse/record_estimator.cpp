@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <numeric>
 
 #include "core/constants.hpp"
 #include "core/error.hpp"
+#include "inverse/onset_steps.hpp"
 #include "inverse/sample_statistics.hpp"
 #include "inverse/se_inflation.hpp"
 #include "spectral/amplitude_spectrum.hpp"
@@ -109,6 +112,22 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
     const double innovation2 = whitener.innovation_sigma_v() * whitener.innovation_sigma_v();
     return with_floor(innovation2, std::max(0.0, mean_square(whitened) - innovation2));
   };
+  // Contact onsets the record shows as steps: each placement of an atom is also tried at each
+  // (inverse/onset_steps.hpp), where the prior frees onsets.
+  std::vector<double> step_onsets, step_asperities;  // each step once; once per asperity
+  if (layout_.onset_free)
+    for (const OnsetStep& step : onset_steps(atoms_->device(), prior_.support(0.01).second, sigma, atoms_->grid(), voltage)) {
+      step_onsets.push_back(step.onset_s);
+      for (long i = 0; i < std::max(1L, std::lround(step.units)); ++i) step_asperities.push_back(step.onset_s);
+    }
+  out.onset_steps = step_asperities.size();
+  if (std::getenv("STENGMC_DEBUG_SEARCH")) {
+    std::fprintf(stderr, "onset steps: %zu at", step_onsets.size());
+    for (double t : step_onsets) std::fprintf(stderr, " %.3f", t * 1e6);
+    std::fprintf(stderr, " us\n");
+  }
+  proposals_.set_step_onsets(step_onsets);
+  nested_.set_step_onsets(step_asperities);
   RecordFit fit(model_, layout_, loads_, voltage);
   fit.set_noise(Whitener(), sigma);
   // Under a prior of coloured noise the search judges its fits whitened (noise_judge.hpp).
@@ -132,6 +151,18 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
     OrderFit seeded = search.polish(std::move(s));
     if (n == fits.size()) fits.push_back(std::move(seeded));
     else if (seeded.residual_v2 / white_s2 + seeded.penalty < fits[n].residual_v2 / white_s2 + fits[n].penalty)
+      fits[n] = std::move(seeded);
+  }
+  // A start from the onset steps, one atom at each, where the record shows them (LineSearch::place_at_steps).
+  if (!step_asperities.empty() && step_asperities.size() <= prior_.count_max) {
+    OrderFit seeded = search.place_at_steps(start, step_asperities);
+    const std::size_t n = seeded.state.atoms.size();
+    if (std::getenv("STENGMC_DEBUG_SEARCH"))
+      std::fprintf(stderr, "start at %zu steps: order %zu chi2/M %.4f (the search's %.4f)\n", step_asperities.size(), n,
+                   seeded.residual_v2 / white_s2 / static_cast<double>(samples),
+                   n < fits.size() ? fits[n].residual_v2 / white_s2 / static_cast<double>(samples) : -1.0);
+    if (n == fits.size()) fits.push_back(std::move(seeded));
+    else if (n < fits.size() && seeded.residual_v2 / white_s2 + seeded.penalty < fits[n].residual_v2 / white_s2 + fits[n].penalty)
       fits[n] = std::move(seeded);
   }
 

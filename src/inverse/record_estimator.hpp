@@ -79,6 +79,7 @@ struct RecordEstimate {
   double in_band_power_ratio = 1.0;     //!< residual power in the lines' band over the noise band's (1: white)
   ResidualChecks checks;                //!< the chosen fit's residual against the noise model
   std::size_t lines_outside_prior = 0;  //!< identified k beyond the prior's 1e-4 / 1 - 1e-4 quantiles
+  std::size_t onset_steps = 0;          //!< contact onsets seen as steps (inverse/onset_steps.hpp; onsets free only)
   bool more_than_prior_allows = false;  //!< one atom more than the prior's largest count still explains much
   double signal_to_noise_db = 0.0;      //!< 10 log10(var(model) / sigma^2) of the chosen fit [dB]
   double seconds = 0.0;                 //!< CPU time of the estimate (its thread's) [s]

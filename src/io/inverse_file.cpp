@@ -77,7 +77,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
 
   std::vector<std::string> names, verdicts, warnings;
   std::vector<double> noise, residual, snr, band, seconds, naive;
-  std::vector<std::int64_t> outside, estimate, low, high, offsets{0}, line_record, intervals;
+  std::vector<std::int64_t> outside, onset_steps, estimate, low, high, offsets{0}, line_record, intervals;
   std::vector<std::vector<double>> probability, raw_probability;
   std::vector<double> k, k_low, k_high, se, inflation, frequency, amplitude, separation;
   std::vector<double> median, median_low, median_high, sd, sd_low, sd_high;
@@ -95,6 +95,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
     band.push_back(e.in_band_power_ratio);
     seconds.push_back(e.seconds);
     outside.push_back(static_cast<std::int64_t>(e.lines_outside_prior));
+    onset_steps.push_back(static_cast<std::int64_t>(e.onset_steps));
     estimate.push_back(static_cast<std::int64_t>(c.count));
     low.push_back(static_cast<std::int64_t>(c.interval_low));
     high.push_back(static_cast<std::int64_t>(c.interval_high));
@@ -134,6 +135,7 @@ void write_inverse_file(const std::string& path, const InverseFileContext& conte
   f.write("/inverse/records/signal_to_noise_db", snr);
   f.write("/inverse/records/band_power_ratio", band);
   f.write("/inverse/records/lines_outside_prior", outside);
+  f.write("/inverse/records/onset_steps", onset_steps);
   f.write("/inverse/records/seconds", seconds);
   f.write("/inverse/records/verdict", verdicts);
   f.write("/inverse/records/warnings", warnings);

@@ -211,6 +211,7 @@ constexpr std::array TERMS{
     Term{"/inverse/records/signal_to_noise_db", DECIBEL, "signal-to-noise ratio", "record", DECIBEL_COMMENT},
     Term{"/inverse/records/band_power_ratio", "1", "fraction of the power in the prior's band", "record"},
     Term{"/inverse/records/lines_outside_prior", "1", "lines outside the prior's band", "record"},
+    Term{"/inverse/records/onset_steps", "1", "contact onsets the record shows as steps", "record"},
     Term{"/inverse/records/seconds", "s", "computing time", "record"},
     Term{"/inverse/records/verdict", "1", "verdict", "record"},
     Term{"/inverse/records/warnings", "1", "warnings", "record"},
