@@ -226,7 +226,8 @@ void LineProposals::matched_filter(double omega, std::vector<std::complex<double
 }
 
 std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, double amplitude, double d, double load_factor,
-                                                  std::size_t count) {
+                                                  std::size_t count, const std::vector<double>* step_onsets_s) {
+  const std::vector<double>& onsets = step_onsets_s ? *step_onsets_s : step_onsets_s_;
   const AtomLibrary& lib = model_->atoms();
   const RecordGrid& grid = lib.grid();
   const KnownDevice& device = lib.device();
@@ -297,7 +298,7 @@ std::vector<LineCandidate> LineProposals::propose(std::span<const double> r, dou
       matched_filter(omega, matched);
     }
     add_placements(nominal, q, matched, rough);
-    for (Rough& c : step_placements(nominal, q, matched)) stepped.push_back(std::move(c));
+    for (Rough& c : step_placements(nominal, q, matched, onsets)) stepped.push_back(std::move(c));
   }
   // The best distinct ones, best first: neighbours on the grid (a breakaway a few samples on, a
   // load a grid step away) are the same atom to the LM that follows. A heap, not a sort: there
@@ -421,16 +422,17 @@ void LineProposals::add_placements(const AtomParameters& nominal, const Residual
 }
 
 std::vector<LineProposals::Rough> LineProposals::step_placements(const AtomParameters& nominal, const Residual& q,
-                                                                 std::span<const std::complex<double>> matched) const {
+                                                                 std::span<const std::complex<double>> matched,
+                                                                 const std::vector<double>& onsets_s) const {
   std::vector<Rough> out;
-  if (!layout_.onset_free || step_onsets_s_.empty()) return out;
+  if (!layout_.onset_free || onsets_s.empty()) return out;
   const AtomLibrary& lib = model_->atoms();
   const double omega0 = std::sqrt(nominal.stiffness_n_per_m / lib.device().asperity.mass_kg);
   std::vector<double> loads;
   if (layout_.load_per_atom) loads = loads_grid_;
   else loads.push_back(nominal.load_n);
   std::vector<Rough> per_load;
-  for (double onset : step_onsets_s_) {
+  for (double onset : onsets_s) {
     if (onset < layout_.onset_min_s || onset > layout_.onset_max_s) continue;
     per_load.clear();
     for (double load : loads) {
@@ -493,7 +495,7 @@ std::vector<LineCandidate> LineProposals::placements(const AtomParameters& atom,
   }
   // Each step onset with its best load, scored exactly too (LineProposals::propose), unless one
   // of those already is that placement; the best `count` of all are kept.
-  for (const Rough& c : step_placements(atom, q, matched)) {
+  for (const Rough& c : step_placements(atom, q, matched, step_onsets_s_)) {
     const bool close = std::any_of(out.begin(), out.end(), [&](const LineCandidate& o) {
       return std::abs(o.atom.onset_s - c.atom.onset_s) < 0.5 * model_->atoms().grid().step_s &&
              std::abs(std::log(o.atom.load_n / c.atom.load_n)) < PLACEMENT_LOG_LOAD;

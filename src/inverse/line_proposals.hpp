@@ -43,8 +43,11 @@ class LineProposals {
 
   //! At most `count` candidates for one more atom on the (raw) residual `r` of a fit with
   //! amplitude a, damping rate d and shared load factor, best first by exact score.
+  //! `step_onsets_s`, where given, are the onsets tried as steps instead of those set
+  //! (set_step_onsets): a start from the steps asks only at the onsets it has not yet taken.
   std::vector<LineCandidate> propose(std::span<const double> residual, double amplitude, double damping_rate,
-                                     double load_factor, std::size_t count);
+                                     double load_factor, std::size_t count,
+                                     const std::vector<double>* step_onsets_s = nullptr);
 
   //! At most `count` placements (onset and load, as the layout frees them) for `atom` (its
   //! stiffness held) on the residual `r`, distinct (half a period or a load step apart), best
@@ -115,10 +118,11 @@ class LineProposals {
   //! Every load and onset the layout allows for an atom of `nominal`'s stiffness.
   void add_placements(const AtomParameters& nominal, const Residual& q, std::span<const std::complex<double>> matched,
                       std::vector<Rough>& rough) const;
-  //! For each step onset the layout allows, the atom of `nominal`'s stiffness starting there
+  //! For each of `onsets_s` the layout allows, the atom of `nominal`'s stiffness starting there
   //! with the load (of those the layout allows) of the best rough score, best first.
   [[nodiscard]] std::vector<Rough> step_placements(const AtomParameters& nominal, const Residual& q,
-                                                   std::span<const std::complex<double>> matched) const;
+                                                   std::span<const std::complex<double>> matched,
+                                                   const std::vector<double>& onsets_s) const;
   [[nodiscard]] std::size_t index_of(double t) const;
   const RecordModel* model_;
   FitLayout layout_;

@@ -112,11 +112,12 @@ std::vector<bool> LineSearch::neighbours(const FitState& state) const {
   return active;
 }
 
-LineCandidate LineSearch::best_addition(const OrderFit& fit, bool steps_only) {
+LineCandidate LineSearch::best_addition(const OrderFit& fit, const std::vector<double>* only_at_steps) {
   FitState state = fit.state;
   const std::vector<double> r = fit_->residual(state);
   const std::vector<LineCandidate> candidates =
-      proposals_->propose(r, state.amplitude, state.damping_rate_per_s, state.load_factor, options_.candidates);
+      proposals_->propose(r, state.amplitude, state.damping_rate_per_s, state.load_factor, options_.candidates, only_at_steps);
+  const bool steps_only = only_at_steps != nullptr;
   const AtomLibrary& lib = fit_->model().atoms();
   const double lo = std::log(lib.min_stiffness()), hi = std::log(lib.max_stiffness());
   const double d = state.damping_rate_per_s;
@@ -683,14 +684,23 @@ std::optional<OrderFit> LineSearch::split(const OrderFit& fit) {
   return best;
 }
 
+void keep_better_start(std::vector<OrderFit>& fits, OrderFit seeded, double sigma_v) {
+  const std::size_t n = seeded.state.atoms.size();
+  const double s2 = sigma_v * sigma_v;
+  auto chi2 = [&](const OrderFit& f) { return f.residual_v2 / s2 + f.penalty; };
+  if (std::getenv("STENGMC_DEBUG_SEARCH"))
+    std::fprintf(stderr, "start of order %zu: chi2 %.6g (the search's %.6g)\n", n, chi2(seeded), n < fits.size() ? chi2(fits[n]) : -1.0);
+  if (n == fits.size()) fits.push_back(std::move(seeded));
+  else if (n < fits.size() && chi2(seeded) < chi2(fits[n])) fits[n] = std::move(seeded);
+}
+
 OrderFit LineSearch::place_at_steps(const FitState& start, const std::vector<double>& onsets_s) {
   FitState empty = start;
   empty.atoms.clear();
   OrderFit fit = fit_->refine(empty, {}, true, false, options_.max_iterations);
   std::vector<double> left = onsets_s;
   while (!left.empty()) {
-    proposals_->set_step_onsets(left);
-    LineCandidate best = best_addition(fit, true);
+    LineCandidate best = best_addition(fit, &left);
     if (!best.at_step || best.energy_v2 <= 0.0) break;
     // Where no line the map offers explains enough of what is left at any onset still free
     // (the greedy path's own stop), the atoms placed so far have taken that asperity's share:
@@ -707,10 +717,6 @@ OrderFit LineSearch::place_at_steps(const FitState& start, const std::vector<dou
       std::fprintf(stderr, "at steps: n=%zu add k %.3f N %.3g on %.3f us -> rss %.4g\n", fit.state.atoms.size(),
                    best.atom.stiffness_n_per_m, best.atom.load_n, 1e6 * best.atom.onset_s, fit.residual_v2);
   }
-  // The proposals keep every step for the searches that follow.
-  std::vector<double> all = onsets_s;
-  all.erase(std::unique(all.begin(), all.end()), all.end());
-  proposals_->set_step_onsets(all);
   return polish(std::move(fit.state));
 }
 

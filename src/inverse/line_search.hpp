@@ -37,6 +37,12 @@ struct LineSearchOptions {
   std::size_t reseat_sweeps = 2;
 };
 
+//! Puts `seeded`, the fit of a start found beside a search (a nested order, the onset steps),
+//! among that search's `fits` (index n: n atoms): one order past the last is appended (the
+//! orders stay consecutive), an order there is replaced where the start reached a better
+//! optimum (RSS / sigma_v^2 plus the loads' penalty), one further on is dropped.
+void keep_better_start(std::vector<OrderFit>& fits, OrderFit seeded, double sigma_v);
+
 class LineSearch {
  public:
   //! `judge` says which fits explain the record to its noise (those are not re-seated).
@@ -68,8 +74,9 @@ class LineSearch {
  private:
   //! Whether `fit` explains the record to its noise (noise_judge.hpp).
   [[nodiscard]] bool fits_noise(const OrderFit& fit) const { return judge_.fits(*fit_, fit); }
-  //! The best addition to `fit`, refined in ln k by golden section on its exact score.
-  LineCandidate best_addition(const OrderFit& fit, bool steps_only = false);
+  //! The best addition to `fit`, refined in ln k by golden section on its exact score; with
+  //! `only_at_steps`, the best placed at one of those onsets (place_at_steps).
+  LineCandidate best_addition(const OrderFit& fit, const std::vector<double>* only_at_steps = nullptr);
   //! The voltage of `atom` alone at unit amplitude (the record model of it alone).
   [[nodiscard]] std::vector<double> unit_voltage(const AtomParameters& atom, double damping_rate_per_s) const;
   //! Which atoms of `state` move with the new one (the last): neighbours in frequency or in breakaway.

@@ -74,14 +74,7 @@ NestedFits NestedSearch::search(std::span<const double> voltage, double sigma_v,
     std::vector<OrderFit> fits = search.search(start, max_count, min_count);
     if (level->layout.onset_free && !step_asperities_s_.empty() && step_asperities_s_.size() < max_count) {
       // A start from the onset steps; it replaces its order's fit where better.
-      OrderFit seeded = search.place_at_steps(start, step_asperities_s_);
-      const std::size_t n = seeded.state.atoms.size();
-      if (std::getenv("STENGMC_DEBUG_SEARCH"))
-        std::fprintf(stderr, "nested start at %zu steps: order %zu chi2 / M %.4f (the search's %.4f)\n", step_asperities_s_.size(), n,
-                     seeded.residual_v2 / s2 / samples, n < fits.size() ? fits[n].residual_v2 / s2 / samples : -1.0);
-      if (n == fits.size()) fits.push_back(std::move(seeded));
-      else if (n < fits.size() && seeded.residual_v2 / s2 + seeded.penalty < fits[n].residual_v2 / s2 + fits[n].penalty)
-        fits[n] = std::move(seeded);
+      keep_better_start(fits, search.place_at_steps(start, step_asperities_s_), sigma_v);
     }
     // Only the orders refitted in full (they have their normal matrix), and of those the ones
     // within reach of the best (as LineSearch::refit judges hopeless): the others carry little

@@ -144,27 +144,11 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
   std::vector<OrderFit> fits;
   if (nested.fitted_orders.empty()) fits = search.search(start, prior_.count_max + 1, prior_.count_min);
   for (FitState& s : nested.fitted_orders) fits.push_back(fit.refine(std::move(s), {}, true, false, 0));
-  const double white_s2 = sigma * sigma;
-  for (FitState& s : nested.starts) {
-    const std::size_t n = s.atoms.size();
-    if (n > fits.size()) continue;  // (the orders stay consecutive: one past the last is added)
-    OrderFit seeded = search.polish(std::move(s));
-    if (n == fits.size()) fits.push_back(std::move(seeded));
-    else if (seeded.residual_v2 / white_s2 + seeded.penalty < fits[n].residual_v2 / white_s2 + fits[n].penalty)
-      fits[n] = std::move(seeded);
-  }
+  for (FitState& s : nested.starts)
+    if (s.atoms.size() <= fits.size()) keep_better_start(fits, search.polish(std::move(s)), sigma);
   // A start from the onset steps, one atom at each, where the record shows them (LineSearch::place_at_steps).
-  if (!step_asperities.empty() && step_asperities.size() <= prior_.count_max) {
-    OrderFit seeded = search.place_at_steps(start, step_asperities);
-    const std::size_t n = seeded.state.atoms.size();
-    if (std::getenv("STENGMC_DEBUG_SEARCH"))
-      std::fprintf(stderr, "start at %zu steps: order %zu chi2/M %.4f (the search's %.4f)\n", step_asperities.size(), n,
-                   seeded.residual_v2 / white_s2 / static_cast<double>(samples),
-                   n < fits.size() ? fits[n].residual_v2 / white_s2 / static_cast<double>(samples) : -1.0);
-    if (n == fits.size()) fits.push_back(std::move(seeded));
-    else if (n < fits.size() && seeded.residual_v2 / white_s2 + seeded.penalty < fits[n].residual_v2 / white_s2 + fits[n].penalty)
-      fits[n] = std::move(seeded);
-  }
+  if (!step_asperities.empty() && step_asperities.size() <= prior_.count_max)
+    keep_better_start(fits, search.place_at_steps(start, step_asperities), sigma);
 
   if (layout_.coloured_noise) {
     // The noise's spectrum from the residual of the count the white model prefers, then every
