@@ -146,8 +146,10 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
   for (FitState& s : nested.fitted_orders) fits.push_back(fit.refine(std::move(s), {}, true, false, 0));
   for (FitState& s : nested.starts)
     if (s.atoms.size() <= fits.size()) keep_better_start(fits, search.polish(std::move(s)), sigma);
-  // A start from the onset steps, one atom at each, where the record shows them (LineSearch::place_at_steps).
-  if (!step_asperities.empty() && step_asperities.size() <= prior_.count_max)
+  // A start from the onset steps, one atom at each, where the record shows them
+  // (LineSearch::place_at_steps), unless a nested model already fits the record to its noise:
+  // its own onset-free level had that start, and its fits are the answer.
+  if (nested.fitted_orders.empty() && !step_asperities.empty() && step_asperities.size() <= prior_.count_max)
     keep_better_start(fits, search.place_at_steps(start, step_asperities), sigma);
 
   if (layout_.coloured_noise) {
