@@ -13,7 +13,9 @@ counts in the misfit class by the rules without a bank (residual rms > 1.1 x the
 line's ln k error > 1e-3: inverse/calibration_maps.hpp), with which rule fired, the median
 absolute relative error of the median k against the realised sample's median, the RMSE of
 sd(ln k) (records with >= 2 true and identified lines), the naive FFT count's RMSE and exact
-rate on the same signals, and the CPU time per record.
+rate on the same signals, and the CPU time per record. A third table, where the files carry
+them (estimator version 8 on), compares the onset steps the record shows
+(/inverse/records/onset_steps, inverse/onset_steps.hpp) with the true count and the estimate.
 
 Reads only the layouts of src/io/ensemble_file.hpp and src/io/inverse_file.hpp; Debian's
 python3 (python3-h5py, numpy).
@@ -42,6 +44,7 @@ def family_rows(signals, inverted):
         seconds = g["records/seconds"][:]
         residual, noise = g["records/residual_sigma_v"][:], g["records/noise_sigma_v"][:]
         k, se, offset = g["lines/stiffness_n_per_m"][:], g["lines/log_stiffness_se"][:], g["lines/offset"][:]
+        steps = g["records/onset_steps"][:] if "onset_steps" in g["records"] else None
     rows = []
     for j, name in enumerate(names):
         r = int(name.rsplit("realisation_", 1)[1])
@@ -52,7 +55,7 @@ def family_rows(signals, inverted):
         misfit = residual[j] / noise[j] if noise[j] > 0 else 1.0
         worst = worst_line_se(k[offset[j]:offset[j + 1]], se[offset[j]:offset[j + 1]])
         rows.append(dict(n=n, est=m, by_residual=misfit > MISFIT_RATIO, by_line=worst > LINE_SE_BOUND,
-                         seconds=seconds[j], naive=int(naive[j]),
+                         seconds=seconds[j], naive=int(naive[j]), steps=None if steps is None else int(steps[j]),
                          med_err=abs(median[j] / np.median(true_k) - 1.0) if n and m else None,
                          sd_err=sd[j] - sd_log(true_k) if n >= 2 and m >= 2 else None))
     return rows
@@ -73,12 +76,28 @@ def main(argv):
         every += rows
         print(row(os.path.basename(signals)[:-3], rows))
     print(row("every record", every))
+    stepped = [(os.path.basename(signals)[:-3], family_rows(signals, inverted))
+               for signals, inverted in zip(argv[0::2], argv[1::2])]
+    stepped = [(label, rows) for label, rows in stepped if rows and rows[0]["steps"] is not None]
+    if stepped:
+        print()
+        print("| family | signals | onset steps = true n | records with no step | steps = n-hat: of them right |\n"
+              "|---|---|---|---|---|")
+        for label, rows in stepped:
+            print(steps_row(label, rows))
     print()
     print(HEADER.format("true n"))
     for lo, hi in ((0, 0), (1, 4), (5, 8), (9, 12), (13, 16)):
         sel = [r for r in every if lo <= r["n"] <= hi]
         if sel:
             print(row(f"n = {lo}" if lo == hi else f"n {lo}-{hi}", sel))
+
+
+def steps_row(label, rows):
+    n, m, steps = (np.array([r[key] for r in rows]) for key in ("n", "est", "steps"))
+    agree = steps == m
+    return "| %s | %d | %.1f %% | %d | %d of %d |" % (label, len(rows), 100 * np.mean(steps == n), np.sum(steps == 0),
+                                                    np.sum(agree & (m == n)), np.sum(agree))
 
 
 def row(label, rows):
