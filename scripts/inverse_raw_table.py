@@ -54,7 +54,7 @@ def family_rows(signals, inverted):
         n, m = len(true_k), int(estimate[j])
         misfit = residual[j] / noise[j] if noise[j] > 0 else 1.0
         worst = worst_line_se(k[offset[j]:offset[j + 1]], se[offset[j]:offset[j + 1]])
-        rows.append(dict(n=n, est=m, by_residual=misfit > MISFIT_RATIO, by_line=worst > LINE_SE_BOUND,
+        rows.append(dict(record=r, n=n, est=m, by_residual=misfit > MISFIT_RATIO, by_line=worst > LINE_SE_BOUND,
                          seconds=seconds[j], naive=int(naive[j]), steps=None if steps is None else int(steps[j]),
                          med_err=abs(median[j] / np.median(true_k) - 1.0) if n and m else None,
                          sd_err=sd[j] - sd_log(true_k) if n >= 2 and m >= 2 else None))
