@@ -70,15 +70,14 @@ def main(argv):
     if len(argv) < 2 or len(argv) % 2:
         sys.exit(__doc__)
     print(HEADER.format("family"))
+    families = [(os.path.basename(signals)[:-3], family_rows(signals, inverted))
+                for signals, inverted in zip(argv[0::2], argv[1::2])]
     every = []
-    for signals, inverted in zip(argv[0::2], argv[1::2]):
-        rows = family_rows(signals, inverted)
+    for label, rows in families:
         every += rows
-        print(row(os.path.basename(signals)[:-3], rows))
+        print(row(label, rows))
     print(row("every record", every))
-    stepped = [(os.path.basename(signals)[:-3], family_rows(signals, inverted))
-               for signals, inverted in zip(argv[0::2], argv[1::2])]
-    stepped = [(label, rows) for label, rows in stepped if rows and rows[0]["steps"] is not None]
+    stepped = [(label, rows) for label, rows in families if rows and rows[0]["steps"] is not None]
     if stepped:
         print()
         print("| family | signals | onset steps = true n | records with no step | steps = n-hat: of them right |\n"
