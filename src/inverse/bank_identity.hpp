@@ -30,7 +30,9 @@ namespace stengmc {
 //! (LineSearch::place_at_steps).
 //! 9: the broadened model's start from the steps only where no nested model fits the record to
 //! its noise (lines move by <= 1e-6 relative on the staggered-onset family, counts do not).
-inline constexpr int ESTIMATOR_VERSION = 9;
+//! 10: the broadened model's greedy additions and re-seats no longer try the onset steps; the
+//! nested models' and the start from the steps still do.
+inline constexpr int ESTIMATOR_VERSION = 10;
 
 struct BankIdentity {
   std::string device;     //!< KnownDevice::describe()
