@@ -119,18 +119,18 @@ RecordEstimate RecordEstimator::estimate(std::span<const double> voltage, const 
   // one as a rule (v_b = 1 m/s, docs/inverse.md), and there more placements are more ways to
   // patch its misfit with atoms the evidence rewards (all departures at once, 40 records: the
   // count's RMSE 5.3 with them, 4.1 without; staggered onsets at 10 m/s: 71 of 99 exact either way).
-  std::vector<double> step_onsets, step_asperities;  // each step once; once per asperity
-  if (layout_.onset_free)
-    for (const OnsetStep& step : onset_steps(atoms_->device(), prior_.support(0.01).second, sigma, atoms_->grid(), voltage)) {
-      step_onsets.push_back(step.onset_s);
+  std::vector<double> step_asperities;  // each step's onset once per asperity it carries
+  if (layout_.onset_free) {
+    const std::vector<OnsetStep> steps = onset_steps(atoms_->device(), prior_.support(0.01).second, sigma, atoms_->grid(), voltage);
+    for (const OnsetStep& step : steps)
       for (long i = 0; i < std::max(1L, std::lround(step.units)); ++i) step_asperities.push_back(step.onset_s);
+    if (std::getenv("STENGMC_DEBUG_SEARCH")) {
+      std::fprintf(stderr, "onset steps: %zu at", steps.size());
+      for (const OnsetStep& step : steps) std::fprintf(stderr, " %.3f", step.onset_s * 1e6);
+      std::fprintf(stderr, " us\n");
     }
-  out.onset_steps = step_asperities.size();
-  if (std::getenv("STENGMC_DEBUG_SEARCH")) {
-    std::fprintf(stderr, "onset steps: %zu at", step_onsets.size());
-    for (double t : step_onsets) std::fprintf(stderr, " %.3f", t * 1e6);
-    std::fprintf(stderr, " us\n");
   }
+  out.onset_steps = step_asperities.size();
   nested_.set_step_onsets(step_asperities);
   RecordFit fit(model_, layout_, loads_, voltage);
   fit.set_noise(Whitener(), sigma);
